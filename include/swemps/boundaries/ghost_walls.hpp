@@ -1,0 +1,63 @@
+#pragma once
+// Ghost-particle walls (method.md section 1, "Walls"). Each fluid particle within reach of
+// a straight wall segment gets one ghost mirrored across it; a particle near two walls that
+// meet at a corner also gets the ghost mirrored across both, so a right-angled corner is
+// filled like the open water beside it. Ghost normal velocity is minus the particle's;
+// tangential velocity is equal (slip) or opposite (no-slip); every other field is copied.
+// Ghosts take part in the sums of fluid particles and are never integrated.
+//
+// Ghost layers alone do not stop a fast particle: after each move, a particle whose path
+// crossed a wall is put back on its side by reflection (position and normal velocity).
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "swemps/particles/swe_particles.hpp"
+
+namespace swemps::boundaries {
+
+enum class WallCondition { slip, no_slip };
+
+struct WallSegment {
+  std::array<double, 2> from, to;  // m
+  WallCondition condition = WallCondition::slip;
+};
+
+class GhostWalls {
+ public:
+  GhostWalls() = default;
+  explicit GhostWalls(std::vector<WallSegment> segments);
+
+  bool empty() const { return segments_.empty(); }
+  std::span<const WallSegment> segments() const { return segments_; }
+
+  // Appends the ghosts of every fluid particle within `reach` (m) of a wall and remembers
+  // which particles are near which walls for keep_inside(). Requires no ghosts present.
+  void add_ghosts(particles::SweParticles& p, double reach);
+
+  // Copies depth, area, number density and bed of each ghost's fluid particle (after the
+  // depth summation has set them).
+  static void copy_fields_to_ghosts(particles::SweParticles& p);
+
+  // After a move from (old_x, old_y): reflects back every near-wall particle whose path
+  // crossed a wall segment. Returns how many were reflected.
+  std::size_t keep_inside(particles::SweParticles& p, std::span<const double> old_x,
+                          std::span<const double> old_y) const;
+
+  // Signed distance helpers, exposed for tests: true if segment p0-p1 crosses the wall.
+  static bool crosses(const WallSegment& wall, std::array<double, 2> p0, std::array<double, 2> p1);
+
+ private:
+  struct Line {  // a segment in the frame the reflections need
+    std::array<double, 2> origin, tangent, normal;
+    double length;
+  };
+  std::vector<WallSegment> segments_;
+  std::vector<Line> lines_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> near_wall_;  // (particle, segment)
+};
+
+}  // namespace swemps::boundaries

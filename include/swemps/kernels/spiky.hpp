@@ -1,0 +1,55 @@
+#pragma once
+// The spiky kernel (eq 8) used by the shallow-water solver for the depth summation (eq 7)
+// and its gradient. Support 2 r_e. Normalised to 1 in Dim dimensions: the shallow-water
+// mode uses Dim = 2; 1 and 3 are here for the Navier-Stokes mode and for tests.
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace swemps::kernels {
+
+template <int Dim>
+class Spiky {
+  static_assert(Dim >= 1 && Dim <= 3, "spiky kernel defined for 1, 2 and 3 dimensions");
+
+ public:
+  explicit Spiky(double influence_radius) : influence_radius_(influence_radius) {
+    if (!(influence_radius > 0.0) || !std::isfinite(influence_radius)) {
+      throw std::invalid_argument("spiky kernel: influence radius must be finite and > 0");
+    }
+    // (2 - q)^3 integrated over |q| < 2 in Dim dimensions, times r_e^Dim, must give 1.
+    // 1D: 2 * 2^4/4 = 8;  2D: 2 pi * 2^5/20 = 16 pi / 5 (eq 8);  3D: 4 pi * 2^6/60 = 64 pi / 15.
+    const double r_e = influence_radius;
+    if constexpr (Dim == 1) {
+      normalisation_ = 1.0 / (8.0 * r_e);
+    } else if constexpr (Dim == 2) {
+      normalisation_ = 5.0 / (16.0 * std::numbers::pi * r_e * r_e);
+    } else {
+      normalisation_ = 15.0 / (64.0 * std::numbers::pi * r_e * r_e * r_e);
+    }
+  }
+
+  double influence_radius() const { return influence_radius_; }
+  // Distance beyond which w = 0.
+  double support() const { return 2.0 * influence_radius_; }
+
+  // eq 8: w(r) = c (2 - r/r_e)^3 for r <= 2 r_e.
+  double w(double r) const {
+    const double s = 2.0 - r / influence_radius_;
+    return s > 0.0 ? normalisation_ * s * s * s : 0.0;
+  }
+
+  // dw/dr = -3 c (2 - r/r_e)^2 / r_e; finite (non-zero) at r = 0, which is why the spiky
+  // kernel was chosen for gradients: close particles still push each other apart.
+  double dw_dr(double r) const {
+    const double s = 2.0 - r / influence_radius_;
+    return s > 0.0 ? -3.0 * normalisation_ * s * s / influence_radius_ : 0.0;
+  }
+
+ private:
+  double influence_radius_;
+  double normalisation_ = 0.0;
+};
+
+}  // namespace swemps::kernels

@@ -1,0 +1,90 @@
+#pragma once
+// Cell-list neighbour search. Points are binned into square (cubic) cells at least as wide
+// as the search radius, so the neighbours of a point lie in its own cell and the 3^Dim
+// cells around it. Binning is a counting sort: order() lists point indices cell by cell,
+// which callers use to reorder their particle arrays so that neighbours sit near each other
+// in memory. Building is serial and deterministic; queries are read-only and thread-safe.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace swemps::neighbors {
+
+template <int Dim>
+using Coordinates = std::array<std::span<const double>, Dim>;
+
+template <int Dim>
+class CellList {
+ public:
+  // Bins `coords` (Dim arrays of equal length) into cells of width >= min_cell_width.
+  void build(const Coordinates<Dim>& coords, double min_cell_width);
+
+  std::size_t point_count() const { return order_.size(); }
+  std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
+  double cell_width() const { return cell_width_; }
+  // Point indices sorted by cell (row-major cell order, x fastest).
+  std::span<const std::uint32_t> order() const { return order_; }
+
+  // Calls f(j) for every point j in the cells around `point` (a superset of the points
+  // within cell_width() of it), in a fixed order.
+  template <class F>
+  void for_each_candidate(const std::array<double, Dim>& point, F&& f) const {
+    std::array<std::int64_t, Dim> c{};
+    for (int d = 0; d < Dim; ++d) c[d] = cell_coordinate(point[d], d);
+    std::array<std::int64_t, Dim> lo{}, hi{};
+    for (int d = 0; d < Dim; ++d) {
+      lo[d] = std::max<std::int64_t>(c[d] - 1, 0);
+      hi[d] = std::min<std::int64_t>(c[d] + 1, cells_[d] - 1);
+      if (lo[d] > hi[d]) return;  // point far outside the binned box: no candidates
+    }
+    if constexpr (Dim == 1) {
+      visit_cells(lo[0], hi[0], f);
+    } else if constexpr (Dim == 2) {
+      for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
+        const std::int64_t row = cy * cells_[0];
+        visit_cells(row + lo[0], row + hi[0], f);
+      }
+    } else {
+      for (std::int64_t cz = lo[2]; cz <= hi[2]; ++cz)
+        for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
+          const std::int64_t row = (cz * cells_[1] + cy) * cells_[0];
+          visit_cells(row + lo[0], row + hi[0], f);
+        }
+    }
+  }
+
+ private:
+  // Cells of a row are contiguous in order_, so a run of cells is one contiguous range.
+  template <class F>
+  void visit_cells(std::int64_t first_cell, std::int64_t last_cell, F& f) const {
+    const std::uint32_t begin = cell_start_[static_cast<std::size_t>(first_cell)];
+    const std::uint32_t end = cell_start_[static_cast<std::size_t>(last_cell) + 1];
+    for (std::uint32_t k = begin; k < end; ++k) f(order_[k]);
+  }
+
+  // Cell of a query point, clamped to one cell outside the binned box on either side:
+  // a point further out has no candidates, one just outside still sees the edge cells.
+  std::int64_t cell_coordinate(double value, int d) const {
+    const double c = std::floor((value - origin_[d]) / cell_width_);
+    if (!(c > -2.0)) return -2;  // also catches NaN
+    if (c > static_cast<double>(cells_[d])) return cells_[d] + 1;
+    return static_cast<std::int64_t>(c);
+  }
+
+  std::array<double, Dim> origin_{};
+  std::array<std::int64_t, Dim> cells_{};
+  double cell_width_ = 1.0;
+  std::vector<std::uint32_t> cell_start_;  // size cell_count + 1
+  std::vector<std::uint32_t> order_;
+};
+
+extern template class CellList<1>;
+extern template class CellList<2>;
+extern template class CellList<3>;
+
+}  // namespace swemps::neighbors

@@ -1,0 +1,37 @@
+#pragma once
+// Neighbour lists in compressed-row form: for each target point i, the indices j != i of
+// all points closer than a radius. Built once per step from a CellList and reused by every
+// particle loop of that step. The order inside a row follows the cell list, so it is the
+// same for any thread count.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "swemps/neighbors/cell_list.hpp"
+
+namespace swemps::neighbors {
+
+struct NeighborList {
+  std::vector<std::uint32_t> offsets;  // row i is index[offsets[i] .. offsets[i+1])
+  std::vector<std::uint32_t> index;
+
+  std::size_t row_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  std::span<const std::uint32_t> row(std::size_t i) const {
+    return {index.data() + offsets[i], index.data() + offsets[i + 1]};
+  }
+};
+
+// Rows for the targets [0, target_count) of `coords`, over all points of `cells` (which
+// must have been built from `coords` with a cell width >= radius). Parallel with OpenMP.
+template <int Dim>
+void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
+                         std::size_t target_count, double radius, NeighborList& out);
+
+// The O(N^2) reference the fast path is tested against; rows sorted by index.
+template <int Dim>
+NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t target_count,
+                                   double radius);
+
+}  // namespace swemps::neighbors

@@ -1,0 +1,25 @@
+#pragma once
+// Filling a polygon with particles on a square lattice.
+
+#include <array>
+#include <vector>
+
+namespace swemps::particles {
+
+struct Lattice {
+  std::vector<std::array<double, 2>> points;  // m
+  double cell_area_m2 = 0.0;                  // the area each point stands for
+};
+
+// An axis-aligned rectangle gets a lattice fitted to it: the spacing is adjusted (by at
+// most half a cell over the side) so that a whole number of cells covers it exactly and
+// the outer particles sit half a cell from its edges, where the mirrored wall ghosts
+// continue the lattice. Any other polygon gets the cell centres of a square lattice that
+// fall inside it, and each point stands for an equal share of the polygon's area, so the
+// water volume is exactly area x depth either way.
+Lattice fill_polygon(const std::vector<std::array<double, 2>>& polygon, double spacing_m);
+
+double polygon_area(const std::vector<std::array<double, 2>>& polygon);
+bool point_in_polygon(const std::vector<std::array<double, 2>>& polygon, std::array<double, 2> p);
+
+}  // namespace swemps::particles

@@ -1,0 +1,51 @@
+#pragma once
+// Shallow-water particles in structure-of-arrays form. Fluid particles come first
+// (indices [0, fluid_count())); ghost particles of the walls are appended behind them for
+// one step and dropped before the next, so every neighbour loop sees one contiguous set.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace swemps::particles {
+
+class SweParticles {
+ public:
+  // Per-particle fields. Units: m, m/s, m^3, m, m^2.
+  std::vector<double> x, y;          // horizontal position
+  std::vector<double> u, v;          // depth-averaged velocity
+  std::vector<double> volume;        // V, conserved
+  std::vector<double> depth;         // h, eq 7
+  std::vector<double> area;          // A = V / h
+  std::vector<double> initial_area;  // A_0, the area a particle was created with
+  std::vector<double> bed;           // z_b at the particle
+  std::vector<double> number_density;  // n, eq 5
+  // For ghosts: the fluid particle mirrored; for fluid particles: its own index.
+  std::vector<std::uint32_t> source;
+
+  std::size_t size() const { return x.size(); }
+  std::size_t fluid_count() const { return fluid_count_; }
+  std::size_t ghost_count() const { return size() - fluid_count_; }
+
+  // Appends a fluid particle (only while there are no ghosts).
+  void add_fluid(double px, double py, double pu, double pv, double vol, double h, double a0,
+                 double zb);
+  // Appends a ghost copying every field of fluid particle `from`, then overriding position
+  // and velocity.
+  void add_ghost(std::uint32_t from, double px, double py, double pu, double pv);
+  void drop_ghosts();
+
+  // Reorders fluid particles so that new index k holds old index order[k] (no ghosts allowed).
+  void reorder(std::span<const std::uint32_t> order);
+  // Removes the fluid particles flagged true (no ghosts allowed); keeps the order of the rest.
+  void remove(std::span<const std::uint8_t> flagged);
+
+  double total_fluid_volume() const;  // summed in index order: reproducible
+
+ private:
+  void resize(std::size_t n);
+  std::size_t fluid_count_ = 0;
+};
+
+}  // namespace swemps::particles

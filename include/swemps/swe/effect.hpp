@@ -1,0 +1,51 @@
+#pragma once
+// An effect is one physical or numerical process a scene asks for (bed slope, friction,
+// splitting, inflow, outflow ...): one small class with one job. The simulation holds only
+// the effects its scene asked for and calls each at its stage of the step; the step loop
+// itself never asks whether an effect is enabled, so an absent effect costs nothing.
+
+#include <span>
+#include <string_view>
+
+#include "swemps/kernels/spiky.hpp"
+#include "swemps/neighbors/neighbor_list.hpp"
+#include "swemps/particles/swe_particles.hpp"
+#include "swemps/swe/settings.hpp"
+
+namespace swemps::swe {
+
+// Volume accounting: what the run started with, what effects added and removed.
+struct VolumeLedger {
+  double initial_m3 = 0.0;
+  double added_m3 = 0.0;    // e.g. inflow
+  double removed_m3 = 0.0;  // e.g. outflow, particles leaving the domain
+  double expected_m3() const { return initial_m3 + added_m3 - removed_m3; }
+};
+
+// Where in the step an effect acts (the step order is documented in simulation.hpp).
+enum class Stage {
+  forces,      // after the depth-gradient acceleration: add accelerations (bed slope ...)
+  velocity,    // after the velocity update, before the move (semi-implicit friction ...)
+  topology,    // after the move, ghosts dropped: add or remove particles (splitting, outflow)
+};
+
+struct StepContext {
+  particles::SweParticles& particles;
+  const neighbors::NeighborList& neighbors;  // valid in the forces and velocity stages
+  const kernels::Spiky<2>& kernel;
+  std::span<double> accel_x, accel_y;        // m s^-2, fluid particles; forces stage
+  const Settings& settings;
+  VolumeLedger& ledger;
+  double time_s;  // at the start of the step
+  double dt_s;
+};
+
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  virtual std::string_view name() const = 0;
+  virtual Stage stage() const = 0;
+  virtual void apply(StepContext& context) = 0;
+};
+
+}  // namespace swemps::swe

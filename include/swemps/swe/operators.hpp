@@ -1,0 +1,52 @@
+#pragma once
+// The discrete operators of the shallow-water MPS method (method.md section 1). Each loops
+// over fluid particles [0, fluid_count()) and their neighbour rows; ghosts contribute as
+// neighbours. Every particle's result depends only on its own row, in a fixed order, so
+// results are the same for any number of threads.
+
+#include <span>
+#include <vector>
+
+#include "swemps/kernels/spiky.hpp"
+#include "swemps/neighbors/neighbor_list.hpp"
+#include "swemps/particles/swe_particles.hpp"
+#include "swemps/swe/settings.hpp"
+
+namespace swemps::swe {
+
+using Kernel = kernels::Spiky<2>;
+
+// eq 9: one influence radius for all particles, from the largest fluid area.
+double influence_radius(const particles::SweParticles& p, double alpha_e);
+
+// eq 7: h_i = sum_j V_j w_ij including the self term; then A_i = V_i / h_i.
+void sum_depth(particles::SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w);
+
+// eq 5: n_i = sum_{j != i} (A_j / A_i) w_ij.
+void sum_number_density(particles::SweParticles& p, const neighbors::NeighborList& nl,
+                        const Kernel& w);
+
+// Gradient of the depth h at every fluid particle, by the chosen variant (see Settings).
+// The mps variant needs number_density (eq 5) to be current.
+void depth_gradient(GradientVariant variant, const particles::SweParticles& p,
+                    const neighbors::NeighborList& nl, const Kernel& w, std::span<double> grad_x,
+                    std::span<double> grad_y);
+
+// eq 13: dt = CFL min_i sqrt(A_i) / (sqrt(g h_i) + |u_i|). Also reports which particle
+// limits the step (for error messages).
+struct TimeStepLimit {
+  double dt_s;
+  std::size_t particle;
+};
+TimeStepLimit stable_time_step(const particles::SweParticles& p, double gravity_m_s2, double cfl);
+
+// Depth at arbitrary points, h(x) = sum_j V_j w(|x - x_j|), over the fluid particles: the
+// same summation as eq 7, so the field integrates to the particles' volume.
+struct RegularGrid {
+  double x0, y0, dx, dy;  // first cell centre and spacing, m
+  std::size_t nx, ny;
+};
+std::vector<double> depth_on_grid(const particles::SweParticles& p, const Kernel& w,
+                                  const RegularGrid& grid);
+
+}  // namespace swemps::swe

@@ -1,0 +1,26 @@
+#pragma once
+// Numerical settings of the shallow-water solver: plain values, no file formats.
+
+namespace swemps::swe {
+
+// Which discrete gradient drives the momentum equation (eq 2).
+enum class GradientVariant {
+  // Area-weighted MPS gradient of z_s (eq 6) as printed in the seed paper. Zero for a
+  // uniform depth whatever the particle arrangement, so still water stays still. Default.
+  mps,
+  // Exact gradient of the summed depth (eq 7): grad h_i = sum_j V_j grad W(x_i - x_j).
+  // Pairwise antisymmetric, so momentum is conserved to round-off, and the dam-break front
+  // runs further; but with the spiky kernel a square lattice at rest is an unstable
+  // equilibrium (round-off grows to 0.1 m/s within seconds): see docs/verification.md.
+  summation,
+};
+
+struct Settings {
+  double gravity_m_s2 = 9.81;
+  double cfl = 0.5;             // eq 13
+  double alpha_e = 1.3;         // eq 9: r_e = alpha_e sqrt(A_max)
+  GradientVariant gradient = GradientVariant::mps;
+  double min_time_step_s = 1e-8;  // a step below this stops the run: the flow has broken down
+};
+
+}  // namespace swemps::swe

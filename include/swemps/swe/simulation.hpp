@@ -1,0 +1,116 @@
+#pragma once
+// The shallow-water MPS simulation (method.md section 1).
+//
+// Water is a set of particles moving in the horizontal plane. Each carries a fixed volume
+// V; its depth h comes from summing its neighbours' volumes with the spiky kernel (eq 7), its
+// area is A = V / h, and it accelerates down the gradient of the water surface (eq 2).
+// Walls are mirrored ghost particles. Everything else a scene may ask for (bed, friction,
+// splitting, inflow, outflow) is an Effect, called at its stage.
+//
+// One step, and why in this order:
+//  1. refresh(): sort fluid particles by cell (neighbours near in memory), take r_e from
+//     the largest area of the previous summation (eq 9: one radius for all, so forces are
+//     symmetric), add wall ghosts, build the neighbour list, sum depth (eq 7) and A = V/h,
+//     copy them to the ghosts. refresh() is also what output calls, so the fields written
+//     at time t are those the next step uses.
+//  2. dt from CFL (eq 13) on the fresh depth and area.
+//  3. a = -g grad h (the chosen variant), then forces-stage effects add to a.
+//  4. u += dt a (symplectic Euler: the new velocity moves the particle), then velocity-stage
+//     effects (semi-implicit friction acts on the updated velocity).
+//  5. x += dt u; particles whose path crossed a wall are reflected back.
+//  6. ghosts dropped; topology-stage effects add or remove particles.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "swemps/boundaries/ghost_walls.hpp"
+#include "swemps/neighbors/cell_list.hpp"
+#include "swemps/neighbors/neighbor_list.hpp"
+#include "swemps/swe/effect.hpp"
+#include "swemps/swe/operators.hpp"
+
+namespace swemps::swe {
+
+// The run cannot go on: non-finite values or a collapsing time step.
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct PhaseTimes {  // wall-clock seconds spent in each part of the step
+  double sort = 0.0, neighbors = 0.0, depth = 0.0, gradient = 0.0, integrate = 0.0, walls = 0.0;
+};
+
+struct EffectTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+class Simulation {
+ public:
+  Simulation(particles::SweParticles fluid, Settings settings, boundaries::GhostWalls walls,
+             std::vector<std::unique_ptr<Effect>> effects);
+
+  // Brings neighbour list, ghosts, depth and area up to date for the current positions.
+  void refresh();
+  // eq 13 on current fields; throws SimulationError if the step is below the floor or a
+  // value is non-finite.
+  double stable_time_step();
+  // Advances by dt (at most stable_time_step()).
+  void advance(double dt_s);
+  // Steps at the stable time step until time() reaches target_s exactly (the last step is
+  // shortened), calling after_step() after each step.
+  template <class AfterStep>
+  void advance_to(double target_s, AfterStep&& after_step) {
+    // The tolerance absorbs round-off in the running sum of dt.
+    const double tolerance = 1e-12 * std::max(1.0, std::abs(target_s));
+    while (target_s - time_s_ > tolerance) {
+      advance(std::min(stable_time_step(), target_s - time_s_));
+      after_step();
+    }
+  }
+  void advance_to(double target_s) {
+    advance_to(target_s, [] {});
+  }
+
+  double time() const { return time_s_; }
+  std::size_t steps() const { return steps_; }
+  std::size_t particle_steps() const { return particle_steps_; }
+  const particles::SweParticles& particles() const { return particles_; }
+  const Kernel& kernel() const { return kernel_; }
+  const Settings& settings() const { return settings_; }
+  const VolumeLedger& ledger() const { return ledger_; }
+  double fluid_volume() const { return particles_.total_fluid_volume(); }
+  // (V - expected) / V_initial: zero up to round-off when volume is conserved.
+  double relative_volume_change() const;
+  std::size_t wall_reflections() const { return wall_reflections_; }
+  const PhaseTimes& phase_times() const { return phase_times_; }
+  std::vector<EffectTime> effect_times() const;
+
+ private:
+  void sort_by_cell();
+  void run_effects(Stage stage, double dt_s);
+
+  particles::SweParticles particles_;
+  Settings settings_;
+  boundaries::GhostWalls walls_;
+  std::vector<std::unique_ptr<Effect>> effects_;
+  std::vector<double> effect_seconds_;
+  Kernel kernel_;
+  neighbors::CellList<2> cells_;
+  neighbors::NeighborList neighbor_list_;
+  std::vector<double> accel_x_, accel_y_, old_x_, old_y_;
+  std::vector<std::uint32_t> order_;
+  VolumeLedger ledger_;
+  PhaseTimes phase_times_;
+  double time_s_ = 0.0;
+  std::size_t steps_ = 0, particle_steps_ = 0, wall_reflections_ = 0;
+  bool fresh_ = false;
+};
+
+}  // namespace swemps::swe

@@ -1,0 +1,132 @@
+#include "swemps/boundaries/ghost_walls.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace swemps::boundaries {
+
+namespace {
+
+using Vec = std::array<double, 2>;
+
+double dot(Vec a, Vec b) { return a[0] * b[0] + a[1] * b[1]; }
+double cross(Vec a, Vec b) { return a[0] * b[1] - a[1] * b[0]; }
+Vec sub(Vec a, Vec b) { return {a[0] - b[0], a[1] - b[1]}; }
+
+}  // namespace
+
+GhostWalls::GhostWalls(std::vector<WallSegment> segments) : segments_(std::move(segments)) {
+  lines_.reserve(segments_.size());
+  for (const auto& s : segments_) {
+    const Vec d = sub(s.to, s.from);
+    const double length = std::hypot(d[0], d[1]);
+    if (!(length > 0.0) || !std::isfinite(length)) {
+      throw std::invalid_argument("wall segment of zero or non-finite length");
+    }
+    const Vec t{d[0] / length, d[1] / length};
+    lines_.push_back({s.from, t, Vec{-t[1], t[0]}, length});
+  }
+}
+
+void GhostWalls::add_ghosts(particles::SweParticles& p, double reach) {
+  if (p.ghost_count() != 0) throw std::logic_error("add_ghosts: ghosts already present");
+  near_wall_.clear();
+  const std::size_t n = p.fluid_count();
+  std::vector<std::uint32_t> near;  // segments near the current particle
+  for (std::size_t i = 0; i < n; ++i) {
+    near.clear();
+    const Vec x{p.x[i], p.y[i]};
+    for (std::uint32_t s = 0; s < lines_.size(); ++s) {
+      const Line& line = lines_[s];
+      const Vec rel = sub(x, line.origin);
+      const double along = dot(rel, line.tangent);
+      // Half-open [0, length): where two collinear segments join, one ghost, not two.
+      if (along < 0.0 || along >= line.length) continue;
+      if (std::abs(dot(rel, line.normal)) >= reach) continue;
+      near.push_back(s);
+    }
+    const auto id = static_cast<std::uint32_t>(i);
+    for (std::uint32_t s : near) {
+      near_wall_.emplace_back(id, s);
+      const Line& line = lines_[s];
+      const double d = dot(sub(x, line.origin), line.normal);
+      const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
+      const double ut = p.u[i] * line.tangent[0] + p.v[i] * line.tangent[1];
+      const double ghost_ut = segments_[s].condition == WallCondition::slip ? ut : -ut;
+      p.add_ghost(id, x[0] - 2.0 * d * line.normal[0], x[1] - 2.0 * d * line.normal[1],
+                  ghost_ut * line.tangent[0] - un * line.normal[0],
+                  ghost_ut * line.tangent[1] - un * line.normal[1]);
+    }
+    // Corner: mirror across both walls (a point reflection for a right angle), so the
+    // quadrant behind the corner holds water too.
+    for (std::size_t a = 0; a < near.size(); ++a) {
+      for (std::size_t b = a + 1; b < near.size(); ++b) {
+        const Line& la = lines_[near[a]];
+        const Line& lb = lines_[near[b]];
+        if (std::abs(cross(la.tangent, lb.tangent)) < 1e-9) continue;  // parallel walls
+        Vec g = x;
+        Vec vel{p.u[i], p.v[i]};
+        for (const auto* line : {&la, &lb}) {
+          const double d = dot(sub(g, line->origin), line->normal);
+          g = {g[0] - 2.0 * d * line->normal[0], g[1] - 2.0 * d * line->normal[1]};
+          const double un = dot(vel, line->normal);
+          vel = {vel[0] - 2.0 * un * line->normal[0], vel[1] - 2.0 * un * line->normal[1]};
+        }
+        p.add_ghost(id, g[0], g[1], vel[0], vel[1]);
+      }
+    }
+  }
+}
+
+void GhostWalls::copy_fields_to_ghosts(particles::SweParticles& p) {
+  for (std::size_t k = p.fluid_count(); k < p.size(); ++k) {
+    const std::uint32_t i = p.source[k];
+    p.depth[k] = p.depth[i];
+    p.area[k] = p.area[i];
+    p.number_density[k] = p.number_density[i];
+    p.bed[k] = p.bed[i];
+  }
+}
+
+bool GhostWalls::crosses(const WallSegment& wall, Vec p0, Vec p1) {
+  // Proper or touching intersection of segment p0-p1 with the wall; ending exactly on the
+  // wall counts as crossing, so no particle is ever left on a wall line.
+  const Vec d = sub(p1, p0);
+  const Vec e = sub(wall.to, wall.from);
+  const double denom = cross(d, e);
+  if (denom == 0.0) return false;  // parallel: cannot pass through
+  const Vec w = sub(wall.from, p0);
+  const double t = cross(w, e) / denom;  // along the path
+  const double s = cross(w, d) / denom;  // along the wall
+  return t > 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0;
+}
+
+std::size_t GhostWalls::keep_inside(particles::SweParticles& p, std::span<const double> old_x,
+                                    std::span<const double> old_y) const {
+  std::size_t reflected = 0;
+  for (const auto& [i, s] : near_wall_) {
+    const Vec start{old_x[i], old_y[i]};
+    const Vec end{p.x[i], p.y[i]};
+    if (!crosses(segments_[s], start, end)) continue;
+    const Line& line = lines_[s];
+    const double side = dot(sub(start, line.origin), line.normal);
+    const double d = dot(sub(end, line.origin), line.normal);
+    // Mirror the overshoot back to the starting side; a particle ending on the line is
+    // pushed off it by a hair so that it cannot sit on the wall.
+    const double sign = side >= 0.0 ? 1.0 : -1.0;
+    double back = -d * sign;  // distance behind the wall, >= 0
+    back = std::max(back, 1e-9 * line.length);
+    const double target = sign * back;
+    p.x[i] = end[0] + (target - d) * line.normal[0];
+    p.y[i] = end[1] + (target - d) * line.normal[1];
+    const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
+    if (un * sign < 0.0) {  // moving into the wall: bounce
+      p.u[i] -= 2.0 * un * line.normal[0];
+      p.v[i] -= 2.0 * un * line.normal[1];
+    }
+    ++reflected;
+  }
+  return reflected;
+}
+
+}  // namespace swemps::boundaries

@@ -1,0 +1,70 @@
+// swe-mps: entry point. Turns every failure into one clear line and an exit status.
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "swemps/cli/options.hpp"
+#include "swemps/cli/run_command.hpp"
+#include "swemps/scenario/scenario.hpp"
+#include "swemps/swe/simulation.hpp"
+
+namespace {
+
+void set_up_logging(swemps::cli::Verbosity verbosity) {
+  auto logger = spdlog::stderr_color_mt("swe-mps");
+  logger->set_pattern("%^[%l]%$ %v");
+  switch (verbosity) {
+    case swemps::cli::Verbosity::quiet: logger->set_level(spdlog::level::warn); break;
+    case swemps::cli::Verbosity::normal: logger->set_level(spdlog::level::info); break;
+    case swemps::cli::Verbosity::verbose: logger->set_level(spdlog::level::debug); break;
+  }
+  spdlog::set_default_logger(logger);
+}
+
+int fail(int status, const std::string& message) {
+  std::fprintf(stderr, "swe-mps: %s\n", message.c_str());
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace swemps::cli;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  std::string command_line = "swe-mps";
+  for (const auto& a : args) command_line += " " + a;
+
+  Options options;
+  try {
+    options = parse_options(args);
+  } catch (const UsageError& e) {
+    return fail(exit_input, std::string(e.what()) + "\n\n" + usage_text());
+  }
+  if (options.command == "help") {
+    std::fputs(usage_text().c_str(), stdout);
+    return exit_ok;
+  }
+  if (options.command == "version") {
+    std::printf("swe-mps %s\n", SWEMPS_VERSION);
+    return exit_ok;
+  }
+
+  set_up_logging(options.verbosity);
+  try {
+    run(options, command_line);
+    return exit_ok;
+  } catch (const swemps::scenario::ScenarioError& e) {
+    return fail(exit_input, e.what());
+  } catch (const swemps::swe::SimulationError& e) {
+    return fail(exit_breakdown, std::string("the simulation broke down: ") + e.what());
+  } catch (const OutputError& e) {
+    return fail(exit_output, std::string("cannot write output: ") + e.what());
+  } catch (const std::exception& e) {
+    return fail(exit_internal, std::string("error: ") + e.what());
+  }
+}

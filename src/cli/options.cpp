@@ -1,0 +1,79 @@
+#include "swemps/cli/options.hpp"
+
+#include <charconv>
+
+namespace swemps::cli {
+
+std::string usage_text() {
+  return R"(swe-mps: shallow-water MPS particle simulator for floods and tsunamis
+
+Usage:
+  swe-mps run SCENARIO.json [options]
+  swe-mps --help | --version
+
+Options:
+  -o, --output FILE   write the netCDF result to FILE instead of the scene's output.path
+  -t, --threads N     OpenMP threads (default: all cores; results do not depend on N)
+  -q, --quiet         warnings and errors only, no progress
+  -v, --verbose       debug messages
+  -h, --help          this text
+      --version       print the version
+
+Exit status: 0 done; 2 bad command line or scenario; 3 the simulation broke down
+(non-finite values or a collapsing time step); 4 the output could not be written;
+1 any other error.
+)";
+}
+
+namespace {
+
+int parse_threads(const std::string& text) {
+  int value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || value < 1 || value > 1024) {
+    throw UsageError("--threads expects a whole number from 1 to 1024, found '" + text + "'");
+  }
+  return value;
+}
+
+}  // namespace
+
+Options parse_options(const std::vector<std::string>& args) {
+  Options options;
+  for (std::size_t k = 0; k < args.size(); ++k) {
+    const std::string& arg = args[k];
+    auto value = [&](const std::string& name) -> const std::string& {
+      if (k + 1 >= args.size()) throw UsageError(name + " expects a value");
+      return args[++k];
+    };
+    if (arg == "-h" || arg == "--help") {
+      options.command = "help";
+      return options;
+    } else if (arg == "--version") {
+      options.command = "version";
+      return options;
+    } else if (arg == "-o" || arg == "--output") {
+      options.output = value(arg);
+    } else if (arg == "-t" || arg == "--threads") {
+      options.threads = parse_threads(value(arg));
+    } else if (arg == "-q" || arg == "--quiet") {
+      options.verbosity = Verbosity::quiet;
+    } else if (arg == "-v" || arg == "--verbose") {
+      options.verbosity = Verbosity::verbose;
+    } else if (!arg.empty() && arg[0] == '-') {
+      throw UsageError("unknown option '" + arg + "' (see swe-mps --help)");
+    } else if (options.command.empty()) {
+      if (arg != "run") throw UsageError("unknown command '" + arg + "' (the command is: run)");
+      options.command = arg;
+    } else if (options.scenario.empty()) {
+      options.scenario = arg;
+    } else {
+      throw UsageError("unexpected argument '" + arg + "'");
+    }
+  }
+  if (options.command.empty()) throw UsageError("no command given (see swe-mps --help)");
+  if (options.scenario.empty()) throw UsageError("'run' expects a scenario file");
+  return options;
+}
+
+}  // namespace swemps::cli

@@ -1,0 +1,75 @@
+#include "swemps/neighbors/cell_list.hpp"
+
+#include <limits>
+#include <stdexcept>
+
+namespace swemps::neighbors {
+
+template <int Dim>
+void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width) {
+  if (!(min_cell_width > 0.0) || !std::isfinite(min_cell_width)) {
+    throw std::invalid_argument("cell list: cell width must be finite and > 0");
+  }
+  const std::size_t n = coords[0].size();
+  for (int d = 1; d < Dim; ++d) {
+    if (coords[d].size() != n) throw std::invalid_argument("cell list: coordinate arrays differ in length");
+  }
+  if (n >= std::numeric_limits<std::uint32_t>::max()) {
+    throw std::length_error("cell list: too many points for 32-bit indices");
+  }
+
+  std::array<double, Dim> lo, hi;
+  lo.fill(0.0);
+  hi.fill(0.0);
+  if (n > 0) {
+    for (int d = 0; d < Dim; ++d) {
+      const auto [mn, mx] = std::minmax_element(coords[d].begin(), coords[d].end());
+      lo[d] = *mn;
+      hi[d] = *mx;
+      if (!std::isfinite(lo[d]) || !std::isfinite(hi[d])) {
+        throw std::domain_error("cell list: non-finite coordinate");
+      }
+    }
+  }
+
+  // A few far-flung points must not make the grid huge: widen cells until there are at
+  // most a few cells per point. Wider cells only add candidates, never lose neighbours.
+  cell_width_ = min_cell_width;
+  const double max_cells = 4.0 * static_cast<double>(n) + 1024.0;
+  for (;;) {
+    double total = 1.0;
+    for (int d = 0; d < Dim; ++d) total *= std::floor((hi[d] - lo[d]) / cell_width_) + 1.0;
+    if (total <= max_cells) break;
+    cell_width_ *= 2.0;
+  }
+  origin_ = lo;
+  std::size_t total_cells = 1;
+  for (int d = 0; d < Dim; ++d) {
+    cells_[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / cell_width_)) + 1;
+    total_cells *= static_cast<std::size_t>(cells_[d]);
+  }
+
+  // Counting sort by cell: stable, so points keep their relative order inside a cell.
+  std::vector<std::uint32_t> cell_of(n);
+  cell_start_.assign(total_cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t index = 0;
+    for (int d = Dim - 1; d >= 0; --d) {
+      auto c = static_cast<std::int64_t>((coords[d][i] - origin_[d]) / cell_width_);
+      c = std::clamp<std::int64_t>(c, 0, cells_[d] - 1);
+      index = index * static_cast<std::size_t>(cells_[d]) + static_cast<std::size_t>(c);
+    }
+    cell_of[i] = static_cast<std::uint32_t>(index);
+    ++cell_start_[index + 1];
+  }
+  for (std::size_t c = 0; c < total_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  order_.resize(n);
+  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+template class CellList<1>;
+template class CellList<2>;
+template class CellList<3>;
+
+}  // namespace swemps::neighbors

@@ -1,0 +1,90 @@
+#include "swemps/neighbors/neighbor_list.hpp"
+
+#include <stdexcept>
+
+namespace swemps::neighbors {
+
+namespace {
+
+template <int Dim>
+std::array<double, Dim> point_at(const Coordinates<Dim>& coords, std::size_t i) {
+  std::array<double, Dim> p{};
+  for (int d = 0; d < Dim; ++d) p[d] = coords[d][i];
+  return p;
+}
+
+template <int Dim>
+double distance_squared(const Coordinates<Dim>& coords, const std::array<double, Dim>& p,
+                        std::size_t j) {
+  double r2 = 0.0;
+  for (int d = 0; d < Dim; ++d) {
+    const double delta = coords[d][j] - p[d];
+    r2 += delta * delta;
+  }
+  return r2;
+}
+
+}  // namespace
+
+template <int Dim>
+void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
+                         std::size_t target_count, double radius, NeighborList& out) {
+  if (radius > cells.cell_width()) {
+    throw std::invalid_argument("neighbour list: radius larger than the cell width");
+  }
+  if (target_count > cells.point_count()) {
+    throw std::invalid_argument("neighbour list: more targets than binned points");
+  }
+  const double radius2 = radius * radius;
+  const auto n = static_cast<std::int64_t>(target_count);
+  out.offsets.assign(target_count + 1, 0);
+
+  // Two passes (count, then fill) keep the rows contiguous without per-thread buffers.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto p = point_at<Dim>(coords, static_cast<std::size_t>(i));
+    std::uint32_t count = 0;
+    cells.for_each_candidate(p, [&](std::uint32_t j) {
+      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) ++count;
+    });
+    out.offsets[static_cast<std::size_t>(i) + 1] = count;
+  }
+  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.index.resize(out.offsets[target_count]);
+
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto p = point_at<Dim>(coords, static_cast<std::size_t>(i));
+    std::uint32_t* slot = out.index.data() + out.offsets[static_cast<std::size_t>(i)];
+    cells.for_each_candidate(p, [&](std::uint32_t j) {
+      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) *slot++ = j;
+    });
+  }
+}
+
+template <int Dim>
+NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t target_count,
+                                   double radius) {
+  NeighborList out;
+  out.offsets.push_back(0);
+  const std::size_t n = coords[0].size();
+  for (std::size_t i = 0; i < target_count; ++i) {
+    const auto p = point_at<Dim>(coords, i);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j != i && distance_squared<Dim>(coords, p, j) < radius * radius) {
+        out.index.push_back(static_cast<std::uint32_t>(j));
+      }
+    }
+    out.offsets.push_back(static_cast<std::uint32_t>(out.index.size()));
+  }
+  return out;
+}
+
+template void build_neighbor_list<1>(const CellList<1>&, const Coordinates<1>&, std::size_t, double, NeighborList&);
+template void build_neighbor_list<2>(const CellList<2>&, const Coordinates<2>&, std::size_t, double, NeighborList&);
+template void build_neighbor_list<3>(const CellList<3>&, const Coordinates<3>&, std::size_t, double, NeighborList&);
+template NeighborList brute_force_neighbors<1>(const Coordinates<1>&, std::size_t, double);
+template NeighborList brute_force_neighbors<2>(const Coordinates<2>&, std::size_t, double);
+template NeighborList brute_force_neighbors<3>(const Coordinates<3>&, std::size_t, double);
+
+}  // namespace swemps::neighbors

@@ -1,0 +1,335 @@
+// Scenario files: broken scenes must fail with a message that points at the problem, valid
+// scenes must arrive field by field, and omitted keys must take their documented defaults.
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "swemps/scenario/scenario.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using swemps::scenario::ScenarioError;
+using Catch::Matchers::Contains;
+
+// The smallest valid scene; broken cases are small edits of it, so each fails for one reason.
+json minimal_scene() {
+  return json::parse(R"({
+    "end_time": 0.5,
+    "domain": {"x_min": 0, "x_max": 10, "y_min": 0, "y_max": 1},
+    "water": [{"rectangle": {"x_min": 0, "x_max": 4.65, "y_min": 0, "y_max": 1},
+               "depth": 0.25, "spacing": 0.1}]
+  })");
+}
+
+std::string edited(const std::function<void(json&)>& edit) {
+  json scene = minimal_scene();
+  edit(scene);
+  return scene.dump(2);
+}
+
+swemps::scenario::Scenario parse_text(const std::string& text) {
+  return swemps::scenario::parse(text, fs::temp_directory_path(), "test");
+}
+
+struct Broken {
+  std::string label;
+  std::string text;
+  std::string path;     // expected substring of json_path()
+  std::string message;  // expected substring of what()
+};
+
+std::vector<Broken> broken_scenes() {
+  return {
+      {"syntax error", "{\n  \"end_time\": 0.5,\n  \"domain\": {\"x_min\": 0,, \"x_max\": 1}\n}",
+       "", "invalid JSON at line 3, column 25: syntax error"},
+      {"comment", "{\"end_time\": 0.5 // seconds\n}", "", "invalid JSON at line 1"},
+      {"empty text", "", "", "expected valid JSON"},
+      {"not an object", "[1, 2]", "", "found an array of 2 elements"},
+      {"misspelt water key", edited([](json& s) {
+         s["water"][0].erase("depth");
+         s["water"][0]["dpeth"] = 0.25;
+       }),
+       "/water/0/dpeth", "did you mean \"depth\"?"},
+      {"misspelt top-level key", edited([](json& s) { s["end_tme"] = 1.0; }), "/end_tme",
+       "did you mean \"end_time\"?"},
+      {"unrelated unknown key", edited([](json& s) { s["numerics"] = {{"zzzzzz", 1}}; }),
+       "/numerics/zzzzzz", "one of the keys cfl, alpha_e, gradient, min_time_step"},
+      {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
+       "found nothing (key missing), expected a number > 0 (seconds)"},
+      {"missing domain", edited([](json& s) { s.erase("domain"); }), "/domain", "key missing"},
+      {"missing water", edited([](json& s) { s.erase("water"); }), "/water", "key missing"},
+      {"empty water", edited([](json& s) { s["water"] = json::array(); }), "/water",
+       "found an empty array"},
+      {"negative depth", edited([](json& s) { s["water"][0]["depth"] = -0.3; }), "/water/0/depth",
+       "scenario error at /water/0/depth: found -0.3, expected a number > 0 (metres)"},
+      {"zero spacing", edited([](json& s) { s["water"][0]["spacing"] = 0; }), "/water/0/spacing",
+       "found 0, expected a number > 0"},
+      {"spacing wider than the water", edited([](json& s) { s["water"][0]["spacing"] = 2.0; }),
+       "/water/0/spacing", "at most 1"},
+      {"string for a number", edited([](json& s) { s["end_time"] = "abc"; }), "/end_time",
+       "found a string \"abc\""},
+      {"boolean for a number", edited([](json& s) { s["gravity"] = true; }), "/gravity",
+       "found true"},
+      {"number too large", "{\"end_time\": 1e999}", "", "number overflow parsing '1e999'"},
+      {"velocity of wrong length", edited([](json& s) { s["water"][0]["velocity"] = {1, 2, 3}; }),
+       "/water/0/velocity", "found an array of 3 elements, expected a [u, v] pair"},
+      {"both rectangle and polygon",
+       edited([](json& s) { s["water"][0]["polygon"] = {{0, 0}, {1, 0}, {1, 1}}; }), "/water/0",
+       "both \"rectangle\" and \"polygon\""},
+      {"neither rectangle nor polygon", edited([](json& s) { s["water"][0].erase("rectangle"); }),
+       "/water/0", "neither \"rectangle\" nor \"polygon\""},
+      {"bow-tie polygon", edited([](json& s) {
+         s["water"][0].erase("rectangle");
+         s["water"][0]["polygon"] = {{0, 0}, {1, 1}, {1, 0}, {0, 1}};
+       }),
+       "/water/0/polygon", "intersecting"},
+      {"polygon turning back on itself", edited([](json& s) {
+         s["water"][0].erase("rectangle");
+         s["water"][0]["polygon"] = {{0, 0}, {2, 0}, {1, 0}, {1, 1}};
+       }),
+       "/water/0/polygon", "turning back"},
+      {"closed polygon", edited([](json& s) {
+         s["water"][0].erase("rectangle");
+         s["water"][0]["polygon"] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}};
+       }),
+       "/water/0/polygon/0", "do not repeat the first vertex"},
+      {"polygon with two vertices", edited([](json& s) {
+         s["water"][0].erase("rectangle");
+         s["water"][0]["polygon"] = {{0, 0}, {1, 0}};
+       }),
+       "/water/0/polygon", "at least 3"},
+      {"water outside the domain", edited([](json& s) {
+         s["water"][0].erase("rectangle");
+         s["water"][0]["polygon"] = {{0, 0}, {11, 0}, {11, 1}};
+       }),
+       "/water/0/polygon/1", "outside the domain"},
+      {"domain x_min >= x_max", edited([](json& s) { s["domain"]["x_min"] = 10; }),
+       "/domain/x_max", "expected a number > x_min"},
+      {"cfl above 1", edited([](json& s) { s["numerics"] = {{"cfl", 1.5}}; }), "/numerics/cfl",
+       "found 1.5, expected a number in (0, 1]"},
+      {"alpha_e far too large", edited([](json& s) { s["numerics"] = {{"alpha_e", 10}}; }),
+       "/numerics/alpha_e", "a number in [1, 3]"},
+      {"bad gradient name", edited([](json& s) { s["numerics"] = {{"gradient", "sumation"}}; }),
+       "/numerics/gradient", "one of \"mps\", \"summation\" (did you mean \"summation\"?)"},
+      {"bad wall condition", edited([](json& s) {
+         s["walls"] = {{{"polyline", {{0, 0}, {0, 1}}}, {"condition", "sticky"}}};
+       }),
+       "/walls/0/condition", "one of \"slip\", \"no_slip\""},
+      {"wall with one point",
+       edited([](json& s) { s["walls"] = {{{"polyline", {{0, 0}}}}}; }), "/walls/0/polyline",
+       "at least 2"},
+      {"wall with a repeated point",
+       edited([](json& s) { s["walls"] = {{{"polyline", {{0, 0}, {0, 0}}}}}; }),
+       "/walls/0/polyline/1", "different from the one before"},
+      {"output time beyond end_time",
+       edited([](json& s) { s["output"] = {{"times", {0.1, 0.7}}}; }), "/output/times/1",
+       "found 0.7, expected a time in (0, end_time = 0.5]"},
+      {"both times and interval",
+       edited([](json& s) { s["output"] = {{"times", {0.1}}, {"interval", 0.1}}; }), "/output",
+       "at most one of \"times\" or \"interval\""},
+      {"part of the grid box", edited([](json& s) { s["output"] = {{"grid", {{"x_min", 1}}}}; }),
+       "/output/grid", "all four of x_min, x_max, y_min, y_max, or none"},
+      {"particles not a boolean", edited([](json& s) { s["output"] = {{"particles", "yes"}}; }),
+       "/output/particles", "true or false"},
+      {"duplicate key",
+       R"({"end_time": 0.5, "water": [{"depth": 1, "depth": 2}]})", "/water/0/depth",
+       "a second time"},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("broken scenes name the offending JSON path and say what was expected", "[scenario]") {
+  for (const Broken& c : broken_scenes()) {
+    INFO("case: " << c.label << "\ntext:\n" << c.text);
+    bool threw = false;
+    try {
+      parse_text(c.text);
+    } catch (const ScenarioError& e) {
+      threw = true;
+      CHECK_THAT(e.json_path(), Contains(c.path));
+      CHECK_THAT(std::string(e.what()), Contains(c.message));
+      CHECK_THAT(std::string(e.what()), Contains("scenario error at "));
+    }
+    CHECK(threw);
+  }
+}
+
+TEST_CASE("an error message holds path, found and expected in one line", "[scenario]") {
+  const ScenarioError e("/water/0/depth", "-0.3", "a number > 0 (metres)");
+  CHECK(std::string(e.what()) ==
+        "scenario error at /water/0/depth: found -0.3, expected a number > 0 (metres)");
+  CHECK(e.json_path() == "/water/0/depth");
+  CHECK(e.found() == "-0.3");
+  CHECK(e.expected() == "a number > 0 (metres)");
+  CHECK_THAT(std::string(ScenarioError("", "x", "y").what()), Contains("at /: found x"));
+}
+
+TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
+  const std::string text = R"({
+    "name": "dam",
+    "description": "a test dam",
+    "gravity": 9.8,
+    "end_time": 2.0,
+    "numerics": {"cfl": 0.3, "alpha_e": 2.0, "gradient": "mps", "min_time_step": 1e-6},
+    "domain": {"x_min": -1, "x_max": 10, "y_min": -2, "y_max": 3},
+    "water": [
+      {"rectangle": {"x_min": 0, "x_max": 4, "y_min": 0, "y_max": 1},
+       "depth": 0.5, "velocity": [1.5, -0.5], "spacing": 0.1},
+      {"polygon": [[5, 0], [7, 0], [6, 2]], "depth": 0.2, "spacing": 0.05}
+    ],
+    "walls": [
+      {"polyline": [[-1, -2], [10, -2]], "condition": "no_slip"},
+      {"polyline": [[0, 3], [0, 2], [1, 2]]}
+    ],
+    "output": {
+      "path": "results/../out/dam.nc",
+      "times": [1.0, 0.5, 2.0, 0.5],
+      "grid": {"spacing": 0.2, "x_min": 0, "x_max": 8, "y_min": 0, "y_max": 2},
+      "particles": false
+    }
+  })";
+  const fs::path base = fs::temp_directory_path() / "swemps-scenario-base";
+  const auto s = swemps::scenario::parse(text, base, "unused");
+
+  CHECK(s.name == "dam");
+  CHECK(s.description == "a test dam");
+  CHECK(s.end_time_s == 2.0);
+  CHECK(s.numerics.gravity_m_s2 == 9.8);
+  CHECK(s.numerics.cfl == 0.3);
+  CHECK(s.numerics.alpha_e == 2.0);
+  CHECK(s.numerics.gradient == swemps::swe::GradientVariant::mps);
+  CHECK(s.numerics.min_time_step_s == 1e-6);
+  CHECK(s.domain.x_min == -1);
+  CHECK(s.domain.x_max == 10);
+  CHECK(s.domain.y_min == -2);
+  CHECK(s.domain.y_max == 3);
+
+  REQUIRE(s.water.size() == 2);
+  const std::vector<swemps::scenario::Point> rectangle{{0, 0}, {4, 0}, {4, 1}, {0, 1}};
+  CHECK(s.water[0].polygon == rectangle);
+  CHECK(s.water[0].depth_m == 0.5);
+  CHECK(s.water[0].velocity_m_s == std::array<double, 2>{1.5, -0.5});
+  CHECK(s.water[0].spacing_m == 0.1);
+  const std::vector<swemps::scenario::Point> triangle{{5, 0}, {7, 0}, {6, 2}};
+  CHECK(s.water[1].polygon == triangle);
+  CHECK(s.water[1].depth_m == 0.2);
+  CHECK(s.water[1].velocity_m_s == std::array<double, 2>{0.0, 0.0});
+  CHECK(s.water[1].spacing_m == 0.05);
+
+  REQUIRE(s.walls.size() == 2);
+  CHECK(s.walls[0].polyline.size() == 2);
+  CHECK(s.walls[0].condition == swemps::scenario::WallCondition::no_slip);
+  CHECK(s.walls[1].polyline.size() == 3);
+  CHECK(s.walls[1].condition == swemps::scenario::WallCondition::slip);
+
+  CHECK(s.output.path == (fs::absolute(base) / "out" / "dam.nc").lexically_normal());
+  CHECK(s.output.times_s == std::vector<double>{0.5, 1.0, 2.0});
+  CHECK(s.output.grid.spacing_m == 0.2);
+  CHECK(s.output.grid.bounds.x_min == 0);
+  CHECK(s.output.grid.bounds.x_max == 8);
+  CHECK(s.output.grid.bounds.y_min == 0);
+  CHECK(s.output.grid.bounds.y_max == 2);
+  CHECK_FALSE(s.output.write_particles);
+}
+
+TEST_CASE("omitted keys take their defaults", "[scenario]") {
+  json scene = minimal_scene();
+  scene["water"].push_back(json::parse(
+      R"({"polygon": [[5, 0], [6, 0], [6, 1]], "depth": 0.1, "spacing": 0.04})"));
+  const fs::path base = fs::temp_directory_path() / "swemps-defaults";
+  const auto s = swemps::scenario::parse(scene.dump(), base, "ritter");
+
+  CHECK(s.name == "ritter");
+  CHECK(s.description.empty());
+  CHECK(s.numerics.gravity_m_s2 == 9.81);
+  CHECK(s.numerics.cfl == 0.5);
+  CHECK(s.numerics.alpha_e == 1.3);
+  CHECK(s.numerics.gradient == swemps::swe::GradientVariant::mps);
+  CHECK(s.numerics.min_time_step_s == 1e-8);
+  CHECK(s.water[0].velocity_m_s == std::array<double, 2>{0.0, 0.0});
+  CHECK(s.walls.empty());
+  CHECK(s.output.times_s == std::vector<double>{0.5});
+  CHECK(s.output.grid.spacing_m == Approx(0.02));  // half the finer of 0.1 and 0.04
+  CHECK(s.output.grid.bounds.x_min == s.domain.x_min);
+  CHECK(s.output.grid.bounds.x_max == s.domain.x_max);
+  CHECK(s.output.grid.bounds.y_min == s.domain.y_min);
+  CHECK(s.output.grid.bounds.y_max == s.domain.y_max);
+  CHECK(s.output.write_particles);
+  CHECK(s.output.path.is_absolute());
+  CHECK(s.output.path == (fs::absolute(base) / "ritter.nc").lexically_normal());
+}
+
+TEST_CASE("an output interval gives its multiples and end_time", "[scenario]") {
+  SECTION("interval dividing end_time") {
+    const auto s = parse_text(edited([](json& j) { j["output"] = {{"interval", 0.1}}; }));
+    REQUIRE(s.output.times_s.size() == 5);
+    for (std::size_t k = 0; k < 5; ++k) CHECK(s.output.times_s[k] == Approx(0.1 * (k + 1)));
+    CHECK(s.output.times_s.back() == 0.5);
+  }
+  SECTION("interval not dividing end_time") {
+    const auto s = parse_text(edited([](json& j) { j["output"] = {{"interval", 0.2}}; }));
+    REQUIRE(s.output.times_s.size() == 3);
+    CHECK(s.output.times_s[0] == Approx(0.2));
+    CHECK(s.output.times_s[1] == Approx(0.4));
+    CHECK(s.output.times_s[2] == 0.5);
+  }
+  SECTION("interval longer than the run") {
+    const auto s = parse_text(edited([](json& j) { j["output"] = {{"interval", 3.0}}; }));
+    CHECK(s.output.times_s == std::vector<double>{0.5});
+  }
+  SECTION("listed times always end with end_time") {
+    const auto s = parse_text(edited([](json& j) { j["output"] = {{"times", {0.2}}}; }));
+    CHECK(s.output.times_s == std::vector<double>{0.2, 0.5});
+  }
+}
+
+TEST_CASE("load() names the scene after its file and resolves paths next to it", "[scenario]") {
+  const fs::path folder = fs::temp_directory_path() / "swemps-load-test" / "mycase";
+  fs::create_directories(folder);
+  {
+    std::ofstream(folder / "scenario.json") << minimal_scene().dump();
+    std::ofstream(folder / "other.json") << minimal_scene().dump();
+  }
+  const auto named_by_folder = swemps::scenario::load(folder / "scenario.json");
+  CHECK(named_by_folder.name == "mycase");
+  CHECK(named_by_folder.output.path == (fs::absolute(folder) / "mycase.nc").lexically_normal());
+  const auto named_by_file = swemps::scenario::load(folder / "other.json");
+  CHECK(named_by_file.name == "other");
+  fs::remove_all(folder.parent_path());
+}
+
+TEST_CASE("load() of a missing file says it cannot read it", "[scenario]") {
+  const fs::path missing = fs::temp_directory_path() / "swemps-no-such-folder" / "scenario.json";
+  try {
+    swemps::scenario::load(missing);
+    FAIL("no error for a missing file");
+  } catch (const ScenarioError& e) {
+    CHECK(e.json_path().empty());
+    CHECK_THAT(e.found(), Contains("cannot read file"));
+    CHECK_THAT(e.found(), Contains("scenario.json"));
+    CHECK_THAT(e.expected(), Contains("a readable scenario JSON file"));
+  }
+}
+
+TEST_CASE("the shipped Ritter case parses", "[scenario]") {
+  const fs::path file = fs::path(SWEMPS_SOURCE_DIR) / "cases" / "ritter" / "scenario.json";
+  if (!fs::exists(file)) {
+    WARN("skipped: " << file.string() << " does not exist yet");
+    return;
+  }
+  const auto s = swemps::scenario::load(file);
+  CHECK(s.end_time_s > 0.0);
+  CHECK_FALSE(s.water.empty());
+  CHECK(s.output.path.is_absolute());
+  CHECK(s.output.times_s.back() == s.end_time_s);
+}
