@@ -26,10 +26,12 @@ io::Grid to_io_grid(const swe::RegularGrid& g) { return {g.x0, g.y0, g.dx, g.dy,
 // Output writing, timed, with I/O failures turned into OutputError.
 class Output {
  public:
-  Output(const scenario::Scenario& scene, const std::string& command_line)
+  Output(const scenario::Scenario& scene, const std::filesystem::path& scenario_file,
+         const std::string& command_line)
       : grid_(scenario::output_grid(scene)) {
-    io::RunMetadata meta{scene.name.empty() ? "swe-mps run" : scene.name, scene.name, command_line,
-                         scene.numerics.gravity_m_s2};
+    io::RunMetadata meta{scene.name,
+                         std::string("swe-mps ") + SWEMPS_VERSION + ", scenario " + scenario_file.string(),
+                         command_line, scene.numerics.gravity_m_s2};
     if (!scene.description.empty()) meta.title += ": " + scene.description;
     try {
       writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, to_io_grid(grid_), meta,
@@ -103,7 +105,7 @@ void run(const Options& options, const std::string& command_line) {
   spdlog::info("scene '{}': {} particles, end time {} s, {} walls, output {}", scene.name,
                initial_particles, scene.end_time_s, scene.walls.size(), scene.output.path.string());
 
-  Output output(scene, command_line);
+  Output output(scene, options.scenario, command_line);
   output.write(sim);
   Progress progress(scene.end_time_s, options.verbosity != Verbosity::quiet);
   for (const double target : scene.output.times_s) {

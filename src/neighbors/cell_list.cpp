@@ -23,18 +23,22 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width)
   hi.fill(0.0);
   if (n > 0) {
     for (int d = 0; d < Dim; ++d) {
-      const auto [mn, mx] = std::minmax_element(coords[d].begin(), coords[d].end());
-      lo[d] = *mn;
-      hi[d] = *mx;
-      if (!std::isfinite(lo[d]) || !std::isfinite(hi[d])) {
-        throw std::domain_error("cell list: non-finite coordinate");
+      lo[d] = hi[d] = coords[d][0];
+      for (const double c : coords[d]) {
+        // Every value is checked: a NaN compares false and would slip past min/max.
+        if (!std::isfinite(c)) throw std::domain_error("cell list: non-finite coordinate");
+        lo[d] = std::min(lo[d], c);
+        hi[d] = std::max(hi[d], c);
       }
     }
   }
 
   // A few far-flung points must not make the grid huge: widen cells until there are at
   // most a few cells per point. Wider cells only add candidates, never lose neighbours.
-  cell_width_ = min_cell_width;
+  // Cells a hair wider than asked: (x - origin) / width is rounded, so two points closer
+  // than the width could otherwise land two cells apart. 1e-8 covers the rounding of cell
+  // coordinates up to ~1e7 cells along an axis.
+  cell_width_ = min_cell_width * (1.0 + 1e-8);
   const double max_cells = 4.0 * static_cast<double>(n) + 1024.0;
   for (;;) {
     double total = 1.0;

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "swemps/neighbors/parallel.hpp"
+
 namespace swemps::neighbors {
 
 namespace {
@@ -40,7 +42,7 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   out.offsets.assign(target_count + 1, 0);
 
   // Two passes (count, then fill) keep the rows contiguous without per-thread buffers.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto p = point_at<Dim>(coords, static_cast<std::size_t>(i));
     std::uint32_t count = 0;
@@ -52,7 +54,7 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
   out.index.resize(out.offsets[target_count]);
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > parallel_threshold)
   for (std::int64_t i = 0; i < n; ++i) {
     const auto p = point_at<Dim>(coords, static_cast<std::size_t>(i));
     std::uint32_t* slot = out.index.data() + out.offsets[static_cast<std::size_t>(i)];

@@ -26,8 +26,8 @@ RitterErrors compare_with_ritter(const RitterProblem& p, const Profile& profile,
   const double c0 = std::sqrt(p.gravity_m_s2 * p.initial_depth_m);
   const double fan_start = p.dam_x_m - c0 * t;
   const double fan_end = p.dam_x_m + 2.0 * c0 * t;
-  RitterErrors e{0.0, 0.0, 0.0, profile.x0_m, fan_end};
-  double length = 0.0;
+  RitterErrors e{0.0, 0.0, 0.0, 0.0, profile.x0_m, fan_end};
+  double length = 0.0, upstream_length = 0.0;
   for (std::size_t k = 0; k < profile.depth_m.size(); ++k) {
     const double x = profile.x0_m + static_cast<double>(k) * profile.dx_m;
     const double h = profile.depth_m[k];
@@ -38,11 +38,16 @@ RitterErrors compare_with_ritter(const RitterProblem& p, const Profile& profile,
     e.fan_l2 += diff * diff * profile.dx_m;
     e.fan_linf = std::max(e.fan_linf, diff);
     length += profile.dx_m;
+    if (x <= p.dam_x_m) {
+      e.upstream_fan_l1 += diff * profile.dx_m;
+      upstream_length += profile.dx_m;
+    }
   }
   const double h0 = p.initial_depth_m;
   e.fan_l1 = length > 0.0 ? e.fan_l1 / length / h0 : 0.0;
   e.fan_l2 = length > 0.0 ? std::sqrt(e.fan_l2 / length) / h0 : 0.0;
   e.fan_linf /= h0;
+  e.upstream_fan_l1 = upstream_length > 0.0 ? e.upstream_fan_l1 / upstream_length / h0 : 0.0;
   return e;
 }
 
