@@ -33,6 +33,10 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width)
     }
   }
 
+  for (int d = 0; d < Dim; ++d) {
+    if (!std::isfinite(hi[d] - lo[d])) throw std::domain_error("cell list: coordinate span overflows");
+  }
+
   // A few far-flung points must not make the grid huge: widen cells until there are at
   // most a few cells per point. Wider cells only add candidates, never lose neighbours.
   // Cells a hair wider than asked: (x - origin) / width is rounded, so two points closer

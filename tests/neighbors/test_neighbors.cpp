@@ -509,6 +509,10 @@ TEST_CASE("cell list and neighbour list reject bad input", "[neighbors]") {
   // A non-finite coordinate cannot be binned; it must not be silently put somewhere.
   std::vector<double> with_nan{0.0, std::numeric_limits<double>::quiet_NaN(), 2.0};
   CHECK_THROWS(cells.build(nb::Coordinates<2>{x, with_nan}, 1.0));
+  // Finite points whose span overflows a double cannot be binned either (this once hung).
+  nb::CellList<1> cells1;
+  const std::vector<double> huge_span{-1e308, 1e308};
+  CHECK_THROWS_AS(cells1.build(nb::Coordinates<1>{huge_span}, 1.0), std::domain_error);
 
   // The stencil of 3 cells per axis only covers a radius up to the cell width.
   // The cell width may exceed the requested 0.1 (by rounding margin or widening); the
