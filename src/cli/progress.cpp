@@ -49,13 +49,16 @@ void Progress::update(double time_s, std::size_t steps, std::size_t particles) {
     const int filled = static_cast<int>(fraction * width);
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar.resize(width, ' ');
-    std::fprintf(stream_, "\r[%s] %5.1f%%  t = %.4g / %.4g s  %zu particles  %.0f steps/s  left %s ",
+    std::fprintf(stream_,
+                 "\r[%s] %5.1f%%  t = %.4g / %.4g s  %zu particles  %.0f steps/s  left %s ",
                  bar.c_str(), 100.0 * fraction, time_s, end_time_s_, particles, steps_per_s,
                  clock_text(left).c_str());
     drawn_ = true;
   } else {
     while (next_fraction_ <= fraction) next_fraction_ += 0.1;
-    std::fprintf(stream_, "progress: %5.1f%%  t = %.4g / %.4g s  %zu steps  %zu particles  %.0f steps/s  elapsed %s  left %s\n",
+    std::fprintf(stream_,
+                 "progress: %5.1f%%  t = %.4g / %.4g s  %zu steps  %zu particles  %.0f steps/s  "
+                 "elapsed %s  left %s\n",
                  100.0 * fraction, time_s, end_time_s_, steps, particles, steps_per_s,
                  clock_text(elapsed).c_str(), clock_text(left).c_str());
   }

@@ -29,9 +29,10 @@ class Output {
   Output(const scenario::Scenario& scene, const std::filesystem::path& scenario_file,
          const std::string& command_line)
       : grid_(scenario::output_grid(scene)) {
-    io::RunMetadata meta{scene.name,
-                         std::string("swe-mps ") + SWEMPS_VERSION + ", scenario " + scenario_file.string(),
-                         command_line, scene.numerics.gravity_m_s2};
+    io::RunMetadata meta{
+        scene.name,
+        std::string("swe-mps ") + SWEMPS_VERSION + ", scenario " + scenario_file.string(),
+        command_line, scene.numerics.gravity_m_s2};
     if (!scene.description.empty()) meta.title += ": " + scene.description;
     try {
       writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, to_io_grid(grid_), meta,
@@ -73,21 +74,24 @@ class Output {
 void log_summary(const swe::Simulation& sim, std::size_t initial_particles, double wall_s,
                  double output_s, const std::filesystem::path& path) {
   const auto& t = sim.phase_times();
-  const double steps_per_s = wall_s > 0.0 ? static_cast<double>(sim.particle_steps()) / wall_s : 0.0;
+  const double steps_per_s =
+      wall_s > 0.0 ? static_cast<double>(sim.particle_steps()) / wall_s : 0.0;
   spdlog::info("done: {} steps to t = {:.6g} s, particles {} -> {}", sim.steps(), sim.time(),
                initial_particles, sim.particles().fluid_count());
   spdlog::info("wall time {:.3f} s, {:.4g} particle-steps/s ({} threads)", wall_s, steps_per_s,
                omp_get_max_threads());
   spdlog::info("volume: initial {:.12g} m3, removed {:.6g} m3, relative change {:.3e}",
                sim.ledger().initial_m3, sim.ledger().removed_m3, sim.relative_volume_change());
-  spdlog::info("time per phase: sort {:.3f} s, neighbours {:.3f} s, depth {:.3f} s, gradient {:.3f} s, "
-               "integrate {:.3f} s, walls {:.3f} s, output {:.3f} s",
-               t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, output_s);
+  spdlog::info(
+      "time per phase: sort {:.3f} s, neighbours {:.3f} s, depth {:.3f} s, gradient {:.3f} s, "
+      "integrate {:.3f} s, walls {:.3f} s, output {:.3f} s",
+      t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, output_s);
   for (const auto& e : sim.effect_times()) {
     spdlog::info("effect '{}': {:.3f} s", e.name, e.seconds);
   }
   if (sim.wall_reflections() > 0) {
-    spdlog::info("{} particle moves crossed a wall and were reflected back", sim.wall_reflections());
+    spdlog::info("{} particle moves crossed a wall and were reflected back",
+                 sim.wall_reflections());
   }
   spdlog::info("wrote {}", path.string());
 }
@@ -96,7 +100,8 @@ void log_summary(const swe::Simulation& sim, std::size_t initial_particles, doub
 
 void run(const Options& options, const std::string& command_line) {
   auto scene = scenario::load(options.scenario);
-  if (options.output) scene.output.path = std::filesystem::absolute(*options.output).lexically_normal();
+  if (options.output)
+    scene.output.path = std::filesystem::absolute(*options.output).lexically_normal();
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
   const auto start = Clock::now();
@@ -109,7 +114,8 @@ void run(const Options& options, const std::string& command_line) {
   output.write(sim);
   Progress progress(scene.end_time_s, options.verbosity != Verbosity::quiet);
   for (const double target : scene.output.times_s) {
-    sim.advance_to(target, [&] { progress.update(sim.time(), sim.steps(), sim.particles().fluid_count()); });
+    sim.advance_to(
+        target, [&] { progress.update(sim.time(), sim.steps(), sim.particles().fluid_count()); });
     output.write(sim);
     spdlog::debug("wrote output at t = {} s", sim.time());
   }

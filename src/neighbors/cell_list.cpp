@@ -12,7 +12,8 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width)
   }
   const std::size_t n = coords[0].size();
   for (int d = 1; d < Dim; ++d) {
-    if (coords[d].size() != n) throw std::invalid_argument("cell list: coordinate arrays differ in length");
+    if (coords[d].size() != n)
+      throw std::invalid_argument("cell list: coordinate arrays differ in length");
   }
   if (n >= std::numeric_limits<std::uint32_t>::max()) {
     throw std::length_error("cell list: too many points for 32-bit indices");
@@ -34,7 +35,8 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width)
   }
 
   for (int d = 0; d < Dim; ++d) {
-    if (!std::isfinite(hi[d] - lo[d])) throw std::domain_error("cell list: coordinate span overflows");
+    if (!std::isfinite(hi[d] - lo[d]))
+      throw std::domain_error("cell list: coordinate span overflows");
   }
 
   // A few far-flung points must not make the grid huge: widen cells until there are at

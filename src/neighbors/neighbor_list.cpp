@@ -38,30 +38,27 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
     throw std::invalid_argument("neighbour list: more targets than binned points");
   }
   const double radius2 = radius * radius;
-  const auto n = static_cast<std::int64_t>(target_count);
   out.offsets.assign(target_count + 1, 0);
 
-  // Two passes (count, then fill) keep the rows contiguous without per-thread buffers.
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto p = point_at<Dim>(coords, static_cast<std::size_t>(i));
-    std::uint32_t count = 0;
+  // Calls f(j) for every neighbour j of point i, in the cell list's fixed order.
+  auto for_each_neighbor = [&](std::size_t i, auto&& f) {
+    const auto p = point_at<Dim>(coords, i);
     cells.for_each_candidate(p, [&](std::uint32_t j) {
-      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) ++count;
+      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) f(j);
     });
-    out.offsets[static_cast<std::size_t>(i) + 1] = count;
-  }
+  };
+  // Two passes (count, then fill) keep the rows contiguous without per-thread buffers.
+  parallel_for(target_count, [&](std::size_t i) {
+    std::uint32_t count = 0;
+    for_each_neighbor(i, [&](std::uint32_t) { ++count; });
+    out.offsets[i + 1] = count;
+  });
   for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
   out.index.resize(out.offsets[target_count]);
-
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const auto p = point_at<Dim>(coords, static_cast<std::size_t>(i));
-    std::uint32_t* slot = out.index.data() + out.offsets[static_cast<std::size_t>(i)];
-    cells.for_each_candidate(p, [&](std::uint32_t j) {
-      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) *slot++ = j;
-    });
-  }
+  parallel_for(target_count, [&](std::size_t i) {
+    std::uint32_t* slot = out.index.data() + out.offsets[i];
+    for_each_neighbor(i, [&](std::uint32_t j) { *slot++ = j; });
+  });
 }
 
 template <int Dim>
@@ -82,9 +79,12 @@ NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t t
   return out;
 }
 
-template void build_neighbor_list<1>(const CellList<1>&, const Coordinates<1>&, std::size_t, double, NeighborList&);
-template void build_neighbor_list<2>(const CellList<2>&, const Coordinates<2>&, std::size_t, double, NeighborList&);
-template void build_neighbor_list<3>(const CellList<3>&, const Coordinates<3>&, std::size_t, double, NeighborList&);
+template void build_neighbor_list<1>(const CellList<1>&, const Coordinates<1>&, std::size_t, double,
+                                     NeighborList&);
+template void build_neighbor_list<2>(const CellList<2>&, const Coordinates<2>&, std::size_t, double,
+                                     NeighborList&);
+template void build_neighbor_list<3>(const CellList<3>&, const Coordinates<3>&, std::size_t, double,
+                                     NeighborList&);
 template NeighborList brute_force_neighbors<1>(const Coordinates<1>&, std::size_t, double);
 template NeighborList brute_force_neighbors<2>(const Coordinates<2>&, std::size_t, double);
 template NeighborList brute_force_neighbors<3>(const Coordinates<3>&, std::size_t, double);

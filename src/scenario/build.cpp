@@ -27,8 +27,9 @@ particles::SweParticles seed_water(const std::vector<WaterBody>& water) {
 boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
   std::vector<boundaries::WallSegment> segments;
   for (const auto& wall : walls) {
-    const auto condition = wall.condition == WallCondition::slip ? boundaries::WallCondition::slip
-                                                                 : boundaries::WallCondition::no_slip;
+    const auto condition = wall.condition == WallCondition::slip
+                               ? boundaries::WallCondition::slip
+                               : boundaries::WallCondition::no_slip;
     for (std::size_t k = 0; k + 1 < wall.polyline.size(); ++k) {
       segments.push_back({wall.polyline[k], wall.polyline[k + 1], condition});
     }

@@ -10,13 +10,12 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <sstream>
 #include <string_view>
 #include <utility>
-
-#include <nlohmann/json.hpp>
 
 #include "swemps/scenario/scenario.hpp"
 
@@ -74,10 +73,8 @@ std::string literal(std::string_view s) {
 // What a value is, in words, for the "found" part of an error.
 std::string describe(const json& v) {
   switch (v.type()) {
-    case json::value_t::null:
-      return "null";
-    case json::value_t::boolean:
-      return v.get<bool>() ? "true" : "false";
+    case json::value_t::null: return "null";
+    case json::value_t::boolean: return v.get<bool>() ? "true" : "false";
     case json::value_t::string: {
       std::string s = v.get<std::string>();
       if (s.size() > 40) s = s.substr(0, 37) + "...";
@@ -86,10 +83,8 @@ std::string describe(const json& v) {
     case json::value_t::array:
       if (v.empty()) return "an empty array";
       return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " element" : " elements");
-    case json::value_t::object:
-      return v.empty() ? "an empty object" : "an object";
-    default:
-      return v.dump();
+    case json::value_t::object: return v.empty() ? "an empty object" : "an object";
+    default: return v.dump();
   }
 }
 
@@ -464,7 +459,8 @@ swe::Settings read_numerics(const json* v, double gravity) {
   s.alpha_e = bounded(o, "alpha_e", 1.0, false, 3.0,
                       "support radius r_e = alpha_e sqrt(A_max), in particle sizes", s.alpha_e);
   const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
-  s.gradient = gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;
+  s.gradient =
+      gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;
   s.min_time_step_s = positive(o, "min_time_step", kSeconds, s.min_time_step_s);
   return s;
 }
@@ -674,9 +670,7 @@ class DuplicateKeyGuard {
   bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
     using Event = json::parse_event_t;
     switch (event) {
-      case Event::key:
-        on_key(parsed.get<std::string>());
-        break;
+      case Event::key: on_key(parsed.get<std::string>()); break;
       case Event::object_start:
       case Event::array_start: {
         std::string path = frames_.empty() ? std::string() : next_child();
@@ -684,9 +678,7 @@ class DuplicateKeyGuard {
         break;
       }
       case Event::object_end:
-      case Event::array_end:
-        frames_.pop_back();
-        break;
+      case Event::array_end: frames_.pop_back(); break;
       case Event::value:
         if (!frames_.empty()) next_child();  // counts array elements
         break;

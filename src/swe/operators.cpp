@@ -21,16 +21,14 @@ inline double distance(double dx, double dy) { return std::sqrt(dx * dx + dy * d
 
 double influence_radius(const SweParticles& p, double alpha_e) {
   double largest_area = 0.0;
-  for (std::size_t i = 0; i < p.fluid_count(); ++i) largest_area = std::max(largest_area, p.area[i]);
+  for (std::size_t i = 0; i < p.fluid_count(); ++i)
+    largest_area = std::max(largest_area, p.area[i]);
   return alpha_e * std::sqrt(largest_area);
 }
 
 void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w) {
-  const auto n = static_cast<std::int64_t>(p.fluid_count());
   const double self = w.w(0.0);
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  parallel_for(p.fluid_count(), [&](std::size_t i) {
     double h = p.volume[i] * self;  // eq 7 includes j = i
     for (std::uint32_t j : nl.row(i)) {
       const double r = distance(p.x[j] - p.x[i], p.y[j] - p.y[i]);
@@ -38,21 +36,18 @@ void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel&
     }
     p.depth[i] = h;
     p.area[i] = p.volume[i] / h;
-  }
+  });
 }
 
 void sum_number_density(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w) {
-  const auto n = static_cast<std::int64_t>(p.fluid_count());
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  parallel_for(p.fluid_count(), [&](std::size_t i) {
     double sum = 0.0;
     for (std::uint32_t j : nl.row(i)) {
       const double r = distance(p.x[j] - p.x[i], p.y[j] - p.y[i]);
       sum += p.area[j] * w.w(r);
     }
     p.number_density[i] = sum / p.area[i];
-  }
+  });
 }
 
 namespace {
@@ -65,10 +60,7 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
   // grad h_i = sum_j V_j dw/dr (x_i - x_j) / r: the exact derivative of eq 7 with respect to
   // x_i. With a common r_e (eq 9) the pair terms are antisymmetric, so -g V_i grad h_i
   // conserves momentum to round-off.
-  const auto n = static_cast<std::int64_t>(p.fluid_count());
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  parallel_for(p.fluid_count(), [&](std::size_t i) {
     double sx = 0.0, sy = 0.0;
     for (std::uint32_t j : nl.row(i)) {
       const double dx = p.x[i] - p.x[j];
@@ -81,31 +73,29 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
     }
     gx[i] = sx;
     gy[i] = sy;
-  }
+  });
 }
 
 void mps_gradient(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
                   std::span<double> gx, std::span<double> gy) {
   // eq 6 with phi = h, D = 2.
   constexpr double dimension = 2.0;
-  const auto n = static_cast<std::int64_t>(p.fluid_count());
-#pragma omp parallel for schedule(static) if (n > parallel_threshold)
-  for (std::int64_t ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  parallel_for(p.fluid_count(), [&](std::size_t i) {
     double sx = 0.0, sy = 0.0;
     for (std::uint32_t j : nl.row(i)) {
       const double dx = p.x[j] - p.x[i];
       const double dy = p.y[j] - p.y[i];
       const double r2 = dx * dx + dy * dy;
       if (r2 < coincident_m * coincident_m) continue;
-      const double f = (p.depth[j] - p.depth[i]) / r2 * (p.area[j] / p.area[i]) * w.w(std::sqrt(r2));
+      const double f =
+          (p.depth[j] - p.depth[i]) / r2 * (p.area[j] / p.area[i]) * w.w(std::sqrt(r2));
       sx += f * dx;
       sy += f * dy;
     }
     const double n_i = p.number_density[i];
     gx[i] = n_i > 0.0 ? dimension / n_i * sx : 0.0;
     gy[i] = n_i > 0.0 ? dimension / n_i * sy : 0.0;
-  }
+  });
 }
 
 }  // namespace
@@ -141,21 +131,16 @@ std::vector<double> depth_on_grid(const SweParticles& p, const Kernel& w, const 
   cells.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
               w.support());
   const double support = w.support();
-  const auto rows = static_cast<std::int64_t>(grid.ny);
-  const auto cells_total = static_cast<std::int64_t>(grid.nx * grid.ny);
-#pragma omp parallel for schedule(static) if (cells_total > parallel_threshold)
-  for (std::int64_t k = 0; k < rows; ++k) {
-    for (std::size_t i = 0; i < grid.nx; ++i) {
-      const double gx = grid.x0 + static_cast<double>(i) * grid.dx;
-      const double gy = grid.y0 + static_cast<double>(k) * grid.dy;
-      double h = 0.0;
-      cells.for_each_candidate({gx, gy}, [&](std::uint32_t j) {
-        const double r = distance(p.x[j] - gx, p.y[j] - gy);
-        if (r < support) h += p.volume[j] * w.w(r);
-      });
-      depth[static_cast<std::size_t>(k) * grid.nx + i] = h;
-    }
-  }
+  parallel_for(grid.nx * grid.ny, [&](std::size_t cell) {
+    const double gx = grid.x0 + static_cast<double>(cell % grid.nx) * grid.dx;
+    const double gy = grid.y0 + static_cast<double>(cell / grid.nx) * grid.dy;
+    double h = 0.0;
+    cells.for_each_candidate({gx, gy}, [&](std::uint32_t j) {
+      const double r = distance(p.x[j] - gx, p.y[j] - gy);
+      if (r < support) h += p.volume[j] * w.w(r);
+    });
+    depth[cell] = h;
+  });
   return depth;
 }
 

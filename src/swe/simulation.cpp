@@ -38,7 +38,8 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
       // Before the first summation the areas are the lattice areas A_0.
       kernel_(influence_radius(particles_, settings.alpha_e)) {
   if (particles_.fluid_count() == 0) throw std::invalid_argument("simulation: no water particles");
-  if (particles_.ghost_count() != 0) throw std::invalid_argument("simulation: ghosts in the initial state");
+  if (particles_.ghost_count() != 0)
+    throw std::invalid_argument("simulation: ghosts in the initial state");
   ledger_.initial_m3 = particles_.total_fluid_volume();
 }
 
@@ -64,7 +65,8 @@ void Simulation::refresh() {
     ScopedTimer timer(phase_times_.neighbors);
     const auto coords = positions(particles_, particles_.size());
     cells_.build(coords, kernel_.support());
-    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(), neighbor_list_);
+    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
+                           neighbor_list_);
   }
   {
     ScopedTimer timer(phase_times_.depth);
@@ -80,7 +82,8 @@ void Simulation::refresh() {
 
 double Simulation::stable_time_step() {
   refresh();
-  const TimeStepLimit limit = swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
+  const TimeStepLimit limit =
+      swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
   if (!(limit.dt_s >= settings_.min_time_step_s) || !std::isfinite(limit.dt_s)) {
     const std::size_t i = limit.particle;
     std::ostringstream msg;
@@ -95,8 +98,8 @@ double Simulation::stable_time_step() {
 }
 
 void Simulation::run_effects(Stage stage, double dt_s) {
-  StepContext context{particles_, neighbor_list_, kernel_, accel_x_, accel_y_, settings_,
-                      ledger_, time_s_, dt_s};
+  StepContext context{particles_, neighbor_list_, kernel_, accel_x_, accel_y_,
+                      settings_,  ledger_,        time_s_, dt_s};
   for (std::size_t k = 0; k < effects_.size(); ++k) {
     if (effects_[k]->stage() != stage) continue;
     ScopedTimer timer(effect_seconds_[k]);

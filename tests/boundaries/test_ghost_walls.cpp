@@ -31,8 +31,8 @@ TEST_CASE("a particle near a straight wall gets one mirrored ghost", "[boundarie
   REQUIRE(p.ghost_count() == 1);
   CHECK(p.x[1] == Approx(2.0));
   CHECK(p.y[1] == Approx(-0.3));
-  CHECK(p.u[1] == Approx(1.5));   // slip: tangential equal
-  CHECK(p.v[1] == Approx(0.7));   // normal opposite
+  CHECK(p.u[1] == Approx(1.5));  // slip: tangential equal
+  CHECK(p.v[1] == Approx(0.7));  // normal opposite
   CHECK(p.source[1] == 0);
   CHECK(p.volume[1] == p.volume[0]);
   p.drop_ghosts();
@@ -73,8 +73,8 @@ TEST_CASE("a particle in a corner gets a ghost for each wall and one across both
   for (std::size_t k = 1; k < p.size(); ++k) ghosts.push_back({p.x[k], p.y[k], p.u[k], p.v[k]});
   auto has = [&](double x, double y, double u, double v) {
     return std::any_of(ghosts.begin(), ghosts.end(), [&](const auto& g) {
-      return std::abs(g[0] - x) < 1e-12 && std::abs(g[1] - y) < 1e-12 && std::abs(g[2] - u) < 1e-12 &&
-             std::abs(g[3] - v) < 1e-12;
+      return std::abs(g[0] - x) < 1e-12 && std::abs(g[1] - y) < 1e-12 &&
+             std::abs(g[2] - u) < 1e-12 && std::abs(g[3] - v) < 1e-12;
     });
   };
   CHECK(has(0.05, -0.15, 0.3, -0.2));
@@ -93,7 +93,7 @@ TEST_CASE("collinear segments joined end to end give one ghost, not two", "[boun
 TEST_CASE("path-wall crossing", "[boundaries]") {
   const boundaries::WallSegment wall{{0.0, 0.0}, {1.0, 0.0}, WallCondition::slip};
   CHECK(GhostWalls::crosses(wall, {0.5, 0.1}, {0.5, -0.1}));
-  CHECK(GhostWalls::crosses(wall, {0.5, 0.1}, {0.5, 0.0}));    // ending on the wall counts
+  CHECK(GhostWalls::crosses(wall, {0.5, 0.1}, {0.5, 0.0}));  // ending on the wall counts
   CHECK_FALSE(GhostWalls::crosses(wall, {0.5, 0.1}, {0.5, 0.05}));
   CHECK_FALSE(GhostWalls::crosses(wall, {1.5, 0.1}, {1.5, -0.1}));  // past the end
   CHECK_FALSE(GhostWalls::crosses(wall, {0.2, 0.1}, {0.8, 0.1}));   // parallel
@@ -116,14 +116,17 @@ TEST_CASE("a particle pushed through a wall is reflected back", "[boundaries]") 
 TEST_CASE("no particle crosses a wall: a fast jet hits a wall", "[boundaries][swe]") {
   // Water shot at 4 m/s (Froude ~ 4) into a closed box: the ghost layer and the crossing
   // guard together must keep every particle inside at every step.
-  const auto lattice = particles::fill_polygon({{0.2, 0.2}, {0.8, 0.2}, {0.8, 0.8}, {0.2, 0.8}}, 0.04);
+  const auto lattice =
+      particles::fill_polygon({{0.2, 0.2}, {0.8, 0.2}, {0.8, 0.8}, {0.2, 0.8}}, 0.04);
   particles::SweParticles p;
   for (const auto& pt : lattice.points) {
     p.add_fluid(pt[0], pt[1], 4.0, 1.0, 0.1 * lattice.cell_area_m2, 0.1, lattice.cell_area_m2, 0.0);
   }
   const std::array<double, 2> a{0, 0}, b{2, 0}, c{2, 1}, d{0, 1};
-  GhostWalls walls({{a, b, WallCondition::slip}, {b, c, WallCondition::slip},
-                    {c, d, WallCondition::no_slip}, {d, a, WallCondition::slip}});
+  GhostWalls walls({{a, b, WallCondition::slip},
+                    {b, c, WallCondition::slip},
+                    {c, d, WallCondition::no_slip},
+                    {d, a, WallCondition::slip}});
   swe::Simulation sim(std::move(p), {}, std::move(walls), {});
   std::size_t escaped = 0;
   sim.advance_to(1.5, [&] {

@@ -29,10 +29,13 @@ Result run(const std::string& command) {
   return r;
 }
 
-bool have(const std::string& tool) { return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0; }
+bool have(const std::string& tool) {
+  return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
+}
 
 fs::path fresh_dir(const std::string& name) {
-  const auto dir = fs::temp_directory_path() / ("swemps-cli-" + name + "-" + std::to_string(::getpid()));
+  const auto dir =
+      fs::temp_directory_path() / ("swemps-cli-" + name + "-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -53,7 +56,8 @@ TEST_CASE("--help and --version", "[cli]") {
 }
 
 TEST_CASE("bad command lines exit 2 with one clear message", "[cli]") {
-  for (const std::string args : {"", "fly x.json", "run", "run a.json --threads zero", "run a.json --bogus"}) {
+  for (const std::string args :
+       {"", "fly x.json", "run", "run a.json --threads zero", "run a.json --bogus"}) {
     const auto r = run(cli + " " + args);
     INFO(args << " -> " << r.output);
     CHECK(r.status == 2);
@@ -63,7 +67,8 @@ TEST_CASE("bad command lines exit 2 with one clear message", "[cli]") {
 
 TEST_CASE("a broken scenario exits 2 naming the JSON path", "[cli]") {
   const auto dir = fresh_dir("bad");
-  std::ofstream(dir / "scenario.json") << R"({"end_time": 1, "domain": {"x_min": 0, "x_max": 1, "y_min": 0, "y_max": 1},
+  std::ofstream(dir / "scenario.json")
+      << R"({"end_time": 1, "domain": {"x_min": 0, "x_max": 1, "y_min": 0, "y_max": 1},
     "water": [{"rectangle": {"x_min": 0, "x_max": 1, "y_min": 0, "y_max": 1}, "dpeth": 0.1, "spacing": 0.1}]})";
   const auto r = run(cli + " run " + (dir / "scenario.json").string());
   CHECK(r.status == 2);

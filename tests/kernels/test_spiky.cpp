@@ -4,9 +4,8 @@
 // types and each kernel only adds its wrappers to the type lists. Kernel-specific facts
 // (the eq 8 constant, the non-zero gradient at the origin) have their own test cases.
 
-#include <catch2/catch.hpp>
-
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -53,9 +52,8 @@ template <class Kernel, int Dim>
 double radial_integral(const Kernel& kernel) {
   constexpr std::array<double, 5> node{-0.9061798459386640, -0.5384693101056831, 0.0,
                                        0.5384693101056831, 0.9061798459386640};
-  constexpr std::array<double, 5> weight{0.2369268850561891, 0.4786286704993665,
-                                         0.5688888888888889, 0.4786286704993665,
-                                         0.2369268850561891};
+  constexpr std::array<double, 5> weight{0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                                         0.4786286704993665, 0.2369268850561891};
   constexpr int panels = 64;
   const double h = kernel.support() / panels;
   double sum = 0.0;
@@ -81,16 +79,16 @@ std::vector<double> dense_radii(const Kernel& kernel) {
 
 }  // namespace
 
-TEMPLATE_TEST_CASE("kernel reports its radius and a support of twice the radius",
-                   "[kernels]", Spiky1, Spiky2, Spiky3) {
+TEMPLATE_TEST_CASE("kernel reports its radius and a support of twice the radius", "[kernels]",
+                   Spiky1, Spiky2, Spiky3) {
   const double r_e = any_radius();
   const typename TestType::kernel kernel(r_e);
   CHECK(kernel.influence_radius() == r_e);
   CHECK(kernel.support() == 2.0 * r_e);
 }
 
-TEMPLATE_TEST_CASE("kernel integrates to one over R^Dim (radial Gauss-Legendre)",
-                   "[kernels]", Spiky1, Spiky2, Spiky3) {
+TEMPLATE_TEST_CASE("kernel integrates to one over R^Dim (radial Gauss-Legendre)", "[kernels]",
+                   Spiky1, Spiky2, Spiky3) {
   const double r_e = any_radius();
   const typename TestType::kernel kernel(r_e);
   // The quadrature is exact for the polynomial pieces, so only rounding (~1e-15) is left;
@@ -144,8 +142,8 @@ TEMPLATE_TEST_CASE("kernel is zero at and beyond its support", "[kernels]", Spik
   CHECK(kernel.dw_dr(0.999 * s) < 0.0);
 }
 
-TEMPLATE_TEST_CASE("kernel is non-negative and non-increasing in r", "[kernels]", Spiky1,
-                   Spiky2, Spiky3) {
+TEMPLATE_TEST_CASE("kernel is non-negative and non-increasing in r", "[kernels]", Spiky1, Spiky2,
+                   Spiky3) {
   const double r_e = any_radius();
   const typename TestType::kernel kernel(r_e);
   const auto radii = dense_radii(kernel);
@@ -163,8 +161,7 @@ TEMPLATE_TEST_CASE("kernel is non-negative and non-increasing in r", "[kernels]"
   CHECK(kernel.w(0.0) > 0.0);
 }
 
-TEMPLATE_TEST_CASE("dw_dr matches a central difference of w", "[kernels]", Spiky1, Spiky2,
-                   Spiky3) {
+TEMPLATE_TEST_CASE("dw_dr matches a central difference of w", "[kernels]", Spiky1, Spiky2, Spiky3) {
   const double r_e = any_radius();
   const typename TestType::kernel kernel(r_e);
   // For a cubic, the central difference error is exactly h^2 |w'''| / 6, i.e. a relative
@@ -216,12 +213,12 @@ TEST_CASE("2D spiky kernel at the origin is the eq 8 value", "[kernels]") {
   CHECK(kernel.w(r_e) == Approx(expected / 8.0).epsilon(1e-14));
 }
 
-TEMPLATE_TEST_CASE("kernel rejects a radius that is not finite and positive", "[kernels]",
-                   Spiky1, Spiky2, Spiky3) {
+TEMPLATE_TEST_CASE("kernel rejects a radius that is not finite and positive", "[kernels]", Spiky1,
+                   Spiky2, Spiky3) {
   using Kernel = typename TestType::kernel;
-  const double bad = GENERATE(0.0, -0.0, -1.0, -1e-300, std::numeric_limits<double>::quiet_NaN(),
-                              std::numeric_limits<double>::infinity(),
-                              -std::numeric_limits<double>::infinity());
+  const double bad =
+      GENERATE(0.0, -0.0, -1.0, -1e-300, std::numeric_limits<double>::quiet_NaN(),
+               std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
   CAPTURE(bad);
   CHECK_THROWS_AS(Kernel(bad), std::invalid_argument);
   // The smallest positive radius is legal: the check is on sign and finiteness only.

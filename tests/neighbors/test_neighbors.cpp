@@ -4,11 +4,11 @@
 // pairs at exactly the search radius, points on cell edges and on the box edge, coincident
 // points, empty cells and cells widened by an outlier.
 
-#include <catch2/catch.hpp>
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -131,8 +131,8 @@ std::string first_difference(const nb::NeighborList& fast, const nb::NeighborLis
 // Builds both lists and compares them; returns the number of neighbour entries so callers
 // can make sure a case is not vacuous (two empty lists always agree).
 template <int Dim>
-std::size_t check_against_brute_force(const Points<Dim>& pts, std::size_t targets,
-                                      double radius, double min_cell_width) {
+std::size_t check_against_brute_force(const Points<Dim>& pts, std::size_t targets, double radius,
+                                      double min_cell_width) {
   const auto fast = cell_list_neighbors<Dim>(pts, targets, radius, min_cell_width);
   const auto reference = nb::brute_force_neighbors<Dim>(pts.coords(), targets, radius);
   CHECK(fast.row_count() == targets);
@@ -176,8 +176,7 @@ TEST_CASE("brute-force reference on a hand-worked 1D set", "[neighbors]") {
   // (index 4) sees everything point 1 sees plus point 1 itself.
   Points<1> pts;
   for (double v : {0.0, 0.5, 1.0, 2.0, 0.5}) pts.add({v});
-  const std::vector<std::vector<std::uint32_t>> expected{
-      {1, 4}, {0, 2, 4}, {1, 4}, {}, {0, 1, 2}};
+  const std::vector<std::vector<std::uint32_t>> expected{{1, 4}, {0, 2, 4}, {1, 4}, {}, {0, 1, 2}};
   const auto reference = nb::brute_force_neighbors<1>(pts.coords(), pts.size(), 1.0);
   const auto fast = cell_list_neighbors<1>(pts, pts.size(), 1.0, 1.0);
   REQUIRE(reference.row_count() == expected.size());
@@ -189,8 +188,8 @@ TEST_CASE("brute-force reference on a hand-worked 1D set", "[neighbors]") {
   }
 }
 
-TEMPLATE_TEST_CASE_SIG("cell-list neighbours equal brute force on random points",
-                       "[neighbors]", ((int Dim), Dim), 1, 2, 3) {
+TEMPLATE_TEST_CASE_SIG("cell-list neighbours equal brute force on random points", "[neighbors]",
+                       ((int Dim), Dim), 1, 2, 3) {
   const std::size_t n = GENERATE(as<std::size_t>{}, 0, 1, 2, 50, 2000, large_n);
   // Radii from "almost nobody" to "dozens of neighbours" in every dimension.
   const double radius = GENERATE(0.004, 0.03, 0.12);
@@ -246,8 +245,8 @@ TEMPLATE_TEST_CASE_SIG("pairs at exactly the radius are not neighbours", "[neigh
   SECTION("radius equal to the spacing: nobody") {
     const auto fast = cell_list_neighbors<Dim>(pts, pts.size(), 0.25, 0.25);
     CHECK(fast.index.empty());
-    CHECK(first_difference(fast, nb::brute_force_neighbors<Dim>(pts.coords(), pts.size(),
-                                                                0.25)) == "");
+    CHECK(first_difference(fast, nb::brute_force_neighbors<Dim>(pts.coords(), pts.size(), 0.25)) ==
+          "");
   }
   SECTION("radius twice the spacing: lattice offsets with |o|^2 < 4") {
     // Offsets in units of the spacing: 1D {+-1}: 2; 2D the 8 of the 3x3 block (the axis
@@ -258,8 +257,8 @@ TEMPLATE_TEST_CASE_SIG("pairs at exactly the radius are not neighbours", "[neigh
     std::size_t interior = 0;
     for (int d = Dim - 1; d >= 0; --d) interior = interior * per_side + 2;
     CHECK(fast.row(interior).size() == interior_count);
-    CHECK(first_difference(fast, nb::brute_force_neighbors<Dim>(pts.coords(), pts.size(),
-                                                                0.5)) == "");
+    CHECK(first_difference(fast, nb::brute_force_neighbors<Dim>(pts.coords(), pts.size(), 0.5)) ==
+          "");
   }
 }
 
@@ -318,8 +317,8 @@ TEMPLATE_TEST_CASE_SIG("coincident points are neighbours of each other", "[neigh
   }
 }
 
-TEMPLATE_TEST_CASE_SIG("clustered points with large empty regions", "[neighbors]",
-                       ((int Dim), Dim), 1, 2, 3) {
+TEMPLATE_TEST_CASE_SIG("clustered points with large empty regions", "[neighbors]", ((int Dim), Dim),
+                       1, 2, 3) {
   // Four tight clusters at the corners of a box 20 radii wide: most cells are empty, and
   // rows of empty cells sit between occupied ones in the cell order.
   const double radius = 0.05;
@@ -339,8 +338,8 @@ TEMPLATE_TEST_CASE_SIG("clustered points with large empty regions", "[neighbors]
   }
 }
 
-TEMPLATE_TEST_CASE_SIG("a far outlier widens the cells without losing neighbours",
-                       "[neighbors]", ((int Dim), Dim), 1, 2, 3) {
+TEMPLATE_TEST_CASE_SIG("a far outlier widens the cells without losing neighbours", "[neighbors]",
+                       ((int Dim), Dim), 1, 2, 3) {
   const double radius = 0.02;
   const double outlier = GENERATE(1e6, -1e6);
   CAPTURE(Dim, outlier);
@@ -492,9 +491,9 @@ TEMPLATE_TEST_CASE_SIG("for_each_candidate outside the bounding box", "[neighbor
 TEST_CASE("cell list and neighbour list reject bad input", "[neighbors]") {
   const auto pts = random_points<2>(20, 3);
   nb::CellList<2> cells;
-  for (double bad : {0.0, -0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
-                     std::numeric_limits<double>::infinity(),
-                     -std::numeric_limits<double>::infinity()}) {
+  for (double bad :
+       {0.0, -0.0, -0.1, std::numeric_limits<double>::quiet_NaN(),
+        std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()}) {
     CAPTURE(bad);
     CHECK_THROWS_AS(cells.build(pts.coords(), bad), std::invalid_argument);
   }

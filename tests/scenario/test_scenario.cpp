@@ -2,23 +2,21 @@
 // scenes must arrive field by field, and omitted keys must take their documented defaults.
 
 #include <catch2/catch.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using Catch::Matchers::Contains;
 using nlohmann::json;
 using swemps::scenario::ScenarioError;
-using Catch::Matchers::Contains;
 
 // The smallest valid scene; broken cases are small edits of it, so each fails for one reason.
 json minimal_scene() {
@@ -61,7 +59,9 @@ std::vector<Broken> broken_scenes() {
        "/water/0/dpeth", "did you mean \"depth\"?"},
       {"misspelt top-level key", edited([](json& s) { s["end_tme"] = 1.0; }), "/end_tme",
        "did you mean \"end_time\"?"},
-      {"unrelated unknown key", edited([](json& s) { s["numerics"] = {{"zzzzzz", 1}}; }),
+      {"unrelated unknown key", edited([](json& s) {
+         s["numerics"] = {{"zzzzzz", 1}};
+       }),
        "/numerics/zzzzzz", "one of the keys cfl, alpha_e, gradient, min_time_step"},
       {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
        "found nothing (key missing), expected a number > 0 (seconds)"},
@@ -80,11 +80,14 @@ std::vector<Broken> broken_scenes() {
       {"boolean for a number", edited([](json& s) { s["gravity"] = true; }), "/gravity",
        "found true"},
       {"number too large", "{\"end_time\": 1e999}", "", "number overflow parsing '1e999'"},
-      {"velocity of wrong length", edited([](json& s) { s["water"][0]["velocity"] = {1, 2, 3}; }),
+      {"velocity of wrong length", edited([](json& s) {
+         s["water"][0]["velocity"] = {1, 2, 3};
+       }),
        "/water/0/velocity", "found an array of 3 elements, expected a [u, v] pair"},
-      {"both rectangle and polygon",
-       edited([](json& s) { s["water"][0]["polygon"] = {{0, 0}, {1, 0}, {1, 1}}; }), "/water/0",
-       "both \"rectangle\" and \"polygon\""},
+      {"both rectangle and polygon", edited([](json& s) {
+         s["water"][0]["polygon"] = {{0, 0}, {1, 0}, {1, 1}};
+       }),
+       "/water/0", "both \"rectangle\" and \"polygon\""},
       {"neither rectangle nor polygon", edited([](json& s) { s["water"][0].erase("rectangle"); }),
        "/water/0", "neither \"rectangle\" nor \"polygon\""},
       {"bow-tie polygon", edited([](json& s) {
@@ -112,37 +115,50 @@ std::vector<Broken> broken_scenes() {
          s["water"][0]["polygon"] = {{0, 0}, {11, 0}, {11, 1}};
        }),
        "/water/0/polygon/1", "outside the domain"},
-      {"domain x_min >= x_max", edited([](json& s) { s["domain"]["x_min"] = 10; }),
-       "/domain/x_max", "expected a number > x_min"},
-      {"cfl above 1", edited([](json& s) { s["numerics"] = {{"cfl", 1.5}}; }), "/numerics/cfl",
-       "found 1.5, expected a number in (0, 1]"},
-      {"alpha_e far too large", edited([](json& s) { s["numerics"] = {{"alpha_e", 10}}; }),
+      {"domain x_min >= x_max", edited([](json& s) { s["domain"]["x_min"] = 10; }), "/domain/x_max",
+       "expected a number > x_min"},
+      {"cfl above 1", edited([](json& s) {
+         s["numerics"] = {{"cfl", 1.5}};
+       }),
+       "/numerics/cfl", "found 1.5, expected a number in (0, 1]"},
+      {"alpha_e far too large", edited([](json& s) {
+         s["numerics"] = {{"alpha_e", 10}};
+       }),
        "/numerics/alpha_e", "a number in [1, 3]"},
-      {"bad gradient name", edited([](json& s) { s["numerics"] = {{"gradient", "sumation"}}; }),
+      {"bad gradient name", edited([](json& s) {
+         s["numerics"] = {{"gradient", "sumation"}};
+       }),
        "/numerics/gradient", "one of \"mps\", \"summation\" (did you mean \"summation\"?)"},
       {"bad wall condition", edited([](json& s) {
          s["walls"] = {{{"polyline", {{0, 0}, {0, 1}}}, {"condition", "sticky"}}};
        }),
        "/walls/0/condition", "one of \"slip\", \"no_slip\""},
-      {"wall with one point",
-       edited([](json& s) { s["walls"] = {{{"polyline", {{0, 0}}}}}; }), "/walls/0/polyline",
-       "at least 2"},
-      {"wall with a repeated point",
-       edited([](json& s) { s["walls"] = {{{"polyline", {{0, 0}, {0, 0}}}}}; }),
+      {"wall with one point", edited([](json& s) {
+         s["walls"] = {{{"polyline", {{0, 0}}}}};
+       }),
+       "/walls/0/polyline", "at least 2"},
+      {"wall with a repeated point", edited([](json& s) {
+         s["walls"] = {{{"polyline", {{0, 0}, {0, 0}}}}};
+       }),
        "/walls/0/polyline/1", "different from the one before"},
-      {"output time beyond end_time",
-       edited([](json& s) { s["output"] = {{"times", {0.1, 0.7}}}; }), "/output/times/1",
-       "found 0.7, expected a time in (0, end_time = 0.5]"},
-      {"both times and interval",
-       edited([](json& s) { s["output"] = {{"times", {0.1}}, {"interval", 0.1}}; }), "/output",
-       "at most one of \"times\" or \"interval\""},
-      {"part of the grid box", edited([](json& s) { s["output"] = {{"grid", {{"x_min", 1}}}}; }),
+      {"output time beyond end_time", edited([](json& s) {
+         s["output"] = {{"times", {0.1, 0.7}}};
+       }),
+       "/output/times/1", "found 0.7, expected a time in (0, end_time = 0.5]"},
+      {"both times and interval", edited([](json& s) {
+         s["output"] = {{"times", {0.1}}, {"interval", 0.1}};
+       }),
+       "/output", "at most one of \"times\" or \"interval\""},
+      {"part of the grid box", edited([](json& s) {
+         s["output"] = {{"grid", {{"x_min", 1}}}};
+       }),
        "/output/grid", "all four of x_min, x_max, y_min, y_max, or none"},
-      {"particles not a boolean", edited([](json& s) { s["output"] = {{"particles", "yes"}}; }),
+      {"particles not a boolean", edited([](json& s) {
+         s["output"] = {{"particles", "yes"}};
+       }),
        "/output/particles", "true or false"},
-      {"duplicate key",
-       R"({"end_time": 0.5, "water": [{"depth": 1, "depth": 2}]})", "/water/0/depth",
-       "a second time"},
+      {"duplicate key", R"({"end_time": 0.5, "water": [{"depth": 1, "depth": 2}]})",
+       "/water/0/depth", "a second time"},
   };
 }
 
@@ -244,8 +260,8 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
 
 TEST_CASE("omitted keys take their defaults", "[scenario]") {
   json scene = minimal_scene();
-  scene["water"].push_back(json::parse(
-      R"({"polygon": [[5, 0], [6, 0], [6, 1]], "depth": 0.1, "spacing": 0.04})"));
+  scene["water"].push_back(
+      json::parse(R"({"polygon": [[5, 0], [6, 0], [6, 1]], "depth": 0.1, "spacing": 0.04})"));
   const fs::path base = fs::temp_directory_path() / "swemps-defaults";
   const auto s = swemps::scenario::parse(scene.dump(), base, "ritter");
 

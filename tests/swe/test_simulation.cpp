@@ -19,8 +19,8 @@ namespace {
 
 particles::SweParticles block(double x_min, double x_max, double y_min, double y_max, double depth,
                               double spacing, double u = 0.0, double v = 0.0) {
-  const auto lattice = particles::fill_polygon({{x_min, y_min}, {x_max, y_min}, {x_max, y_max}, {x_min, y_max}},
-                                               spacing);
+  const auto lattice = particles::fill_polygon(
+      {{x_min, y_min}, {x_max, y_min}, {x_max, y_max}, {x_min, y_max}}, spacing);
   particles::SweParticles p;
   for (const auto& pt : lattice.points) {
     p.add_fluid(pt[0], pt[1], u, v, depth * lattice.cell_area_m2, depth, lattice.cell_area_m2, 0.0);
@@ -31,7 +31,8 @@ particles::SweParticles block(double x_min, double x_max, double y_min, double y
 boundaries::GhostWalls closed_box(double x_min, double x_max, double y_min, double y_max,
                                   boundaries::WallCondition condition) {
   const std::array<double, 2> a{x_min, y_min}, b{x_max, y_min}, c{x_max, y_max}, d{x_min, y_max};
-  return boundaries::GhostWalls({{a, b, condition}, {b, c, condition}, {c, d, condition}, {d, a, condition}});
+  return boundaries::GhostWalls(
+      {{a, b, condition}, {b, c, condition}, {c, d, condition}, {d, a, condition}});
 }
 
 double max_speed(const particles::SweParticles& p) {
@@ -43,7 +44,8 @@ double max_speed(const particles::SweParticles& p) {
 }  // namespace
 
 TEST_CASE("water at rest in a walled box stays at rest", "[swe][boundaries]") {
-  const auto condition = GENERATE(boundaries::WallCondition::slip, boundaries::WallCondition::no_slip);
+  const auto condition =
+      GENERATE(boundaries::WallCondition::slip, boundaries::WallCondition::no_slip);
   // The default (eq 6) gradient only: with the summation gradient a square lattice at rest is
   // an unstable equilibrium (docs/verification.md).
   swe::Simulation sim(block(0, 1, 0, 0.6, 0.5, 0.05), {}, closed_box(0, 1, 0, 0.6, condition), {});

@@ -29,8 +29,8 @@ inline scenario::Scenario ritter_scene() {
 
 // The depth profile: eq 7 evaluated on a grid 4x finer than the particles, averaged across
 // the channel (y), as the verification of issue 2 asks.
-inline verification::Profile channel_profile(const swe::Simulation& sim, const scenario::Scenario& scene,
-                                             double spacing_m) {
+inline verification::Profile channel_profile(const swe::Simulation& sim,
+                                             const scenario::Scenario& scene, double spacing_m) {
   const auto& d = scene.domain;
   const double dx = spacing_m / 4.0;
   const auto nx = static_cast<std::size_t>(std::round((d.x_max - d.x_min) / dx));
@@ -39,12 +39,14 @@ inline verification::Profile channel_profile(const swe::Simulation& sim, const s
   const auto depth = swe::depth_on_grid(sim.particles(), sim.kernel(), grid);
   verification::Profile profile{grid.x0, dx, std::vector<double>(nx, 0.0)};
   for (std::size_t k = 0; k < ny; ++k)
-    for (std::size_t i = 0; i < nx; ++i) profile.depth_m[i] += depth[k * nx + i] / static_cast<double>(ny);
+    for (std::size_t i = 0; i < nx; ++i)
+      profile.depth_m[i] += depth[k * nx + i] / static_cast<double>(ny);
   return profile;
 }
 
 // The scene as it is, but for the spacing and (if given) the gradient variant.
-inline RitterRun run_ritter(double spacing_m, std::optional<swe::GradientVariant> gradient = std::nullopt) {
+inline RitterRun run_ritter(double spacing_m,
+                            std::optional<swe::GradientVariant> gradient = std::nullopt) {
   auto scene = ritter_scene();
   for (auto& body : scene.water) body.spacing_m = spacing_m;
   if (gradient) scene.numerics.gradient = *gradient;

@@ -13,7 +13,8 @@ using namespace swemps;
 TEST_CASE("Ritter dam break at the seed's spacing (0.10 m)", "[verification][ritter]") {
   const auto run = testing::run_ritter(0.10);
   const auto& e = run.errors;
-  INFO("fan L1 " << e.fan_l1 << ", upstream fan L1 " << e.upstream_fan_l1 << ", front " << e.front_x_m);
+  INFO("fan L1 " << e.fan_l1 << ", upstream fan L1 " << e.upstream_fan_l1 << ", front "
+                 << e.front_x_m);
   // Volume is carried by the particles and never changes: round-off only.
   CHECK(std::abs(run.relative_volume_change) <= 1e-12);
   // The seed paper reports the front at x = 5.1 m without splitting at this spacing; one
@@ -34,7 +35,8 @@ TEST_CASE("Ritter dam break at the seed's spacing (0.10 m)", "[verification][rit
 TEST_CASE("Ritter dam break under refinement", "[verification][ritter]") {
   const double spacings[] = {0.2, 0.1, 0.05, 0.025};
   std::ofstream table("ritter_convergence.md");
-  table << "| gradient | spacing (m) | particles | steps | fan L1 | fan L2 | fan Linf | upstream fan L1 | front (m) | "
+  table << "| gradient | spacing (m) | particles | steps | fan L1 | fan L2 | fan Linf | upstream "
+           "fan L1 | front (m) | "
            "wall time (s) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto variant : {swe::GradientVariant::mps, swe::GradientVariant::summation}) {
     const char* name = variant == swe::GradientVariant::mps ? "mps (eq 6)" : "summation";
@@ -42,14 +44,17 @@ TEST_CASE("Ritter dam break under refinement", "[verification][ritter]") {
     for (double s : spacings) runs.push_back(testing::run_ritter(s, variant));
     for (const auto& r : runs) {
       char row[512];
-      std::snprintf(row, sizeof row, "| %s | %.3f | %zu | %zu | %.2f %% | %.2f %% | %.1f %% | %.2f %% | %.3f | %.3f |\n", name,
-                    r.spacing_m, r.particles, r.steps, 100 * r.errors.fan_l1, 100 * r.errors.fan_l2,
-                    100 * r.errors.fan_linf, 100 * r.errors.upstream_fan_l1, r.errors.front_x_m, r.wall_s);
+      std::snprintf(
+          row, sizeof row,
+          "| %s | %.3f | %zu | %zu | %.2f %% | %.2f %% | %.1f %% | %.2f %% | %.3f | %.3f |\n", name,
+          r.spacing_m, r.particles, r.steps, 100 * r.errors.fan_l1, 100 * r.errors.fan_l2,
+          100 * r.errors.fan_linf, 100 * r.errors.upstream_fan_l1, r.errors.front_x_m, r.wall_s);
       table << row;
       CHECK(std::abs(r.relative_volume_change) <= 1e-12);
     }
-    const double order = std::log(runs.front().errors.upstream_fan_l1 / runs.back().errors.upstream_fan_l1) /
-                         std::log(spacings[0] / spacings[3]);
+    const double order =
+        std::log(runs.front().errors.upstream_fan_l1 / runs.back().errors.upstream_fan_l1) /
+        std::log(spacings[0] / spacings[3]);
     table << "| " << name << " | observed order of upstream fan L1, 0.2 -> 0.025 m: " << order
           << " | | | | | | | | |\n";
     INFO(name << ": observed order " << order);

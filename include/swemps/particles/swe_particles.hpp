@@ -13,13 +13,13 @@ namespace swemps::particles {
 class SweParticles {
  public:
   // Per-particle fields. Units: m, m/s, m^3, m, m^2.
-  std::vector<double> x, y;          // horizontal position
-  std::vector<double> u, v;          // depth-averaged velocity
-  std::vector<double> volume;        // V, conserved
-  std::vector<double> depth;         // h, eq 7
-  std::vector<double> area;          // A = V / h
-  std::vector<double> initial_area;  // A_0, the area a particle was created with
-  std::vector<double> bed;           // z_b at the particle
+  std::vector<double> x, y;            // horizontal position
+  std::vector<double> u, v;            // depth-averaged velocity
+  std::vector<double> volume;          // V, conserved
+  std::vector<double> depth;           // h, eq 7
+  std::vector<double> area;            // A = V / h
+  std::vector<double> initial_area;    // A_0, the area a particle was created with
+  std::vector<double> bed;             // z_b at the particle
   std::vector<double> number_density;  // n, eq 5
   // For ghosts: the fluid particle mirrored; for fluid particles: its own index.
   std::vector<std::uint32_t> source;

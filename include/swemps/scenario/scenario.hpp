@@ -22,7 +22,7 @@ struct Rectangle {
 // A body of still or moving water: a polygon (a rectangle is stored as its 4 corners),
 // filled with particles on a square lattice of the given spacing.
 struct WaterBody {
-  std::vector<Point> polygon;           // counter-clockwise or clockwise, not closed, >= 3 vertices
+  std::vector<Point> polygon;  // counter-clockwise or clockwise, not closed, >= 3 vertices
   double depth_m = 0.0;
   std::array<double, 2> velocity_m_s{0.0, 0.0};
   double spacing_m = 0.0;
@@ -42,8 +42,8 @@ struct GridSpec {
 };
 
 struct Output {
-  std::filesystem::path path;          // absolute once loaded
-  std::vector<double> times_s;         // sorted, unique, in (0, end_time]; t = 0 is always written too
+  std::filesystem::path path;   // absolute once loaded
+  std::vector<double> times_s;  // sorted, unique, in (0, end_time]; t = 0 is always written too
   GridSpec grid;
   bool write_particles = true;
 };
@@ -53,7 +53,7 @@ struct Scenario {
   std::string description;
   double end_time_s = 0.0;
   swe::Settings numerics;
-  Rectangle domain;                    // particles leaving it are removed and their volume booked
+  Rectangle domain;  // particles leaving it are removed and their volume booked
   std::vector<WaterBody> water;
   std::vector<Wall> walls;
   Output output;

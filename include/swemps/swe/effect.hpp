@@ -24,16 +24,16 @@ struct VolumeLedger {
 
 // Where in the step an effect acts (the step order is documented in simulation.hpp).
 enum class Stage {
-  forces,      // after the depth-gradient acceleration: add accelerations (bed slope ...)
-  velocity,    // after the velocity update, before the move (semi-implicit friction ...)
-  topology,    // after the move, ghosts dropped: add or remove particles (splitting, outflow)
+  forces,    // after the depth-gradient acceleration: add accelerations (bed slope ...)
+  velocity,  // after the velocity update, before the move (semi-implicit friction ...)
+  topology,  // after the move, ghosts dropped: add or remove particles (splitting, outflow)
 };
 
 struct StepContext {
   particles::SweParticles& particles;
   const neighbors::NeighborList& neighbors;  // valid in the forces and velocity stages
   const kernels::Spiky<2>& kernel;
-  std::span<double> accel_x, accel_y;        // m s^-2, fluid particles; forces stage
+  std::span<double> accel_x, accel_y;  // m s^-2, fluid particles; forces stage
   const Settings& settings;
   VolumeLedger& ledger;
   double time_s;  // at the start of the step

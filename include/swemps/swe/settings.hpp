@@ -17,8 +17,8 @@ enum class GradientVariant {
 
 struct Settings {
   double gravity_m_s2 = 9.81;
-  double cfl = 0.5;             // eq 13
-  double alpha_e = 1.3;         // eq 9: r_e = alpha_e sqrt(A_max)
+  double cfl = 0.5;      // eq 13
+  double alpha_e = 1.3;  // eq 9: r_e = alpha_e sqrt(A_max)
   GradientVariant gradient = GradientVariant::mps;
   double min_time_step_s = 1e-8;  // a step below this stops the run: the flow has broken down
 };

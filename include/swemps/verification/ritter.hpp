@@ -25,15 +25,15 @@ struct Profile {
 };
 
 struct RitterErrors {
-  double fan_l1;            // (1/L) integral over the fan of |h - h_R| dx, / h0
-  double fan_l2;            // sqrt((1/L) integral (h - h_R)^2 dx) / h0
-  double fan_linf;          // max |h - h_R| over the fan / h0
+  double fan_l1;    // (1/L) integral over the fan of |h - h_R| dx, / h0
+  double fan_l2;    // sqrt((1/L) integral (h - h_R)^2 dx) / h0
+  double fan_linf;  // max |h - h_R| over the fan / h0
   // L1 as fan_l1 over the upstream half of the fan, x_dam - t sqrt(g h0) <= x <= x_dam,
   // where the exact depth stays above 4/9 h0 and so above the depth a row of unsplit
   // particles can represent (docs/verification.md).
   double upstream_fan_l1;
-  double front_x_m;         // largest x with h > front_threshold
-  double exact_front_x_m;   // x_dam + 2 t sqrt(g h0)
+  double front_x_m;        // largest x with h > front_threshold
+  double exact_front_x_m;  // x_dam + 2 t sqrt(g h0)
 };
 
 // Fan: x_dam - t sqrt(g h0) <= x <= x_dam + 2 t sqrt(g h0).
