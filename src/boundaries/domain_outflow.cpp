@@ -1,5 +1,7 @@
 #include "swemps/boundaries/domain_outflow.hpp"
 
+#include <string>
+
 namespace swemps::boundaries {
 
 void DomainOutflow::apply(swe::StepContext& context) {
@@ -23,6 +25,12 @@ void DomainOutflow::apply(swe::StepContext& context) {
   p.remove(outside_);
   context.ledger.removed_m3 += volume;
   removed_ += count;
+  removed_m3_ += volume;
+}
+
+std::string DomainOutflow::report() const {
+  return std::to_string(removed_) + " particles left the domain, " + std::to_string(removed_m3_) +
+         " m3";
 }
 
 }  // namespace swemps::boundaries

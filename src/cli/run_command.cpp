@@ -87,7 +87,8 @@ void log_summary(const swe::Simulation& sim, std::size_t initial_particles, doub
       "integrate {:.3f} s, walls {:.3f} s, output {:.3f} s",
       t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, output_s);
   for (const auto& e : sim.effect_times()) {
-    spdlog::info("effect '{}': {:.3f} s", e.name, e.seconds);
+    spdlog::info("effect '{}': {:.3f} s{}", e.name, e.seconds,
+                 e.report.empty() ? "" : " (" + e.report + ")");
   }
   if (sim.wall_reflections() > 0) {
     spdlog::info("{} particle moves crossed a wall and were reflected back",

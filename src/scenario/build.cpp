@@ -1,10 +1,15 @@
 #include "swemps/scenario/build.hpp"
 
 #include <cmath>
+#include <memory>
+#include <variant>
 
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
 #include "swemps/particles/seeding.hpp"
+#include "swemps/splitting/particle_splitting.hpp"
+#include "swemps/swe/bed_slope.hpp"
+#include "swemps/swe/manning_friction.hpp"
 
 namespace swemps::scenario {
 
@@ -37,16 +42,49 @@ boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
   return boundaries::GhostWalls(std::move(segments));
 }
 
+// The bed as a source of z_b, or none when the scene's bed is flat (no force, no cost).
+std::shared_ptr<const swe::BedSource> make_bed(const BedSpec& spec) {
+  if (const auto* plane = std::get_if<PlaneBedSpec>(&spec)) {
+    if (plane->slope[0] == 0.0 && plane->slope[1] == 0.0) return nullptr;
+    return std::make_shared<swe::PlaneBed>(plane->elevation_m, plane->slope, plane->origin_m);
+  }
+  if (const auto* profile = std::get_if<ProfileBedSpec>(&spec)) {
+    return std::make_shared<swe::ProfileBed>(profile->points);
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 swe::Simulation make_simulation(const Scenario& scene) {
+  auto walls = make_walls(scene.walls);
+  // Effects in the order they act within their stage.
   std::vector<std::unique_ptr<swe::Effect>> effects;
+  if (scene.splitting) {
+    effects.push_back(std::make_unique<splitting::ParticleSplitting>(
+        *scene.splitting,
+        std::vector<boundaries::WallSegment>(walls.segments().begin(), walls.segments().end())));
+  }
+  if (auto bed = make_bed(scene.bed)) {
+    effects.push_back(std::make_unique<swe::BedSlope>(std::move(bed), scene.numerics.gradient));
+  }
+  if (scene.manning_n) {
+    effects.push_back(std::make_unique<swe::ManningFriction>(*scene.manning_n));
+  }
   const auto& d = scene.domain;
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
-  return swe::Simulation(seed_water(scene.water), scene.numerics, make_walls(scene.walls),
+  auto particles = seed_water(scene.water);
+  // The initial particles stand on the bed too (written with the first output).
+  if (auto bed = make_bed(scene.bed)) {
+    for (std::size_t i = 0; i < particles.fluid_count(); ++i) {
+      particles.bed[i] = bed->elevation(particles.x[i], particles.y[i]);
+    }
+  }
+  return swe::Simulation(std::move(particles), scene.numerics, std::move(walls),
                          std::move(effects));
 }
+
 
 swe::RegularGrid output_grid(const Scenario& scene) {
   const auto& g = scene.output.grid;

@@ -545,6 +545,68 @@ std::vector<Wall> read_walls(const json* v) {
   return out;
 }
 
+BedSpec read_bed(const json* v) {
+  if (v == nullptr) return {};
+  const std::string path = "/bed";
+  const std::string one_kind = "exactly one of \"plane\" or \"profile_x\"";
+  const Object o(*v, path, {"plane", "profile_x"}, "an object with " + one_kind);
+  const json* plane = o.find("plane");
+  const json* profile = o.find("profile_x");
+  if ((plane != nullptr) == (profile != nullptr)) {
+    throw ScenarioError(path, plane ? "both \"plane\" and \"profile_x\"" : "neither kind", one_kind);
+  }
+  if (plane) {
+    const Object po(*plane, o.path("plane"), {"elevation", "slope", "origin"},
+                    "an object with elevation, slope and origin");
+    PlaneBedSpec spec;
+    spec.elevation_m = number(po, "elevation", "a number (metres)", 0.0);
+    if (const json* slope = po.find("slope")) {
+      spec.slope = pair(*slope, po.path("slope"), "a [dz/dx, dz/dy] pair of numbers (m/m)");
+    }
+    if (const json* origin = po.find("origin")) {
+      spec.origin_m = pair(*origin, po.path("origin"), "an [x, y] pair of numbers (metres)");
+    }
+    return spec;
+  }
+  ProfileBedSpec spec;
+  spec.points = points(*profile, o.path("profile_x"), 2);
+  for (std::size_t i = 1; i < spec.points.size(); ++i) {
+    if (!(spec.points[i][0] > spec.points[i - 1][0])) {
+      throw ScenarioError(element_path(o.path("profile_x"), i), "x = " + fmt(spec.points[i][0]),
+                          "x greater than the previous point's " + fmt(spec.points[i - 1][0]) +
+                              " ([x, z] points with x strictly increasing)");
+    }
+  }
+  return spec;
+}
+
+std::optional<double> read_friction(const json* v) {
+  if (v == nullptr) return std::nullopt;
+  const Object o(*v, "/friction", {"manning_n"}, "an object with \"manning_n\"");
+  return positive(o, "manning_n", "s m^-1/3");
+}
+
+std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
+  if (v == nullptr) return std::nullopt;
+  const Object o(*v, "/splitting", {"threshold", "alpha_s", "max_particles"},
+                 "an object (empty for the defaults)");
+  splitting::SplittingSettings s;
+  // A threshold at or below 1 splits particles that have not grown; above 4 the tip is
+  // long gone before a split. alpha_s beyond 1 places daughters beyond the parent's size.
+  s.area_ratio_threshold =
+      bounded(o, "threshold", 1.0, true, 4.0, "the area ratio A/A_0 that triggers a split",
+              s.area_ratio_threshold);
+  s.alpha_s = bounded(o, "alpha_s", 0.0, true, 1.0,
+                      "the daughters' separation in particle sizes (eq 10)", s.alpha_s);
+  const double cap = number(o, "max_particles", "a whole number >= 0 (0: no cap)", 0.0);
+  if (cap < 0.0 || cap != std::floor(cap) || cap > 4e9) {
+    throw ScenarioError(o.path("max_particles"), describe(*o.find("max_particles")),
+                        "a whole number >= 0 (0: no cap)");
+  }
+  s.max_particles = static_cast<std::size_t>(cap);
+  return s;
+}
+
 std::vector<double> listed_times(const json& v, const std::string& path, double end_time) {
   if (!v.is_array()) throw ScenarioError(path, describe(v), "an array of times (seconds)");
   const std::string expected = "a time in (0, end_time = " + fmt(end_time) + "] (seconds)";
@@ -764,7 +826,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   const json root = parse_json(text);
   const Object o(root, "",
                  {"name", "description", "gravity", "end_time", "numerics", "domain", "water",
-                  "walls", "output"},
+                  "walls", "bed", "friction", "splitting", "output"},
                  "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
@@ -783,6 +845,9 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
 
   s.water = read_waters(o.find("water"), s.domain);
   s.walls = read_walls(o.find("walls"));
+  s.bed = read_bed(o.find("bed"));
+  s.manning_n = read_friction(o.find("friction"));
+  s.splitting = read_splitting(o.find("splitting"));
   s.output = read_output(o.find("output"), s, base_dir);
   return s;
 }

@@ -39,21 +39,47 @@ void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel&
   });
 }
 
+double number_density_at(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
+                         std::size_t i) {
+  double sum = 0.0;
+  for (std::uint32_t j : nl.row(i)) {
+    const double r = distance(p.x[j] - p.x[i], p.y[j] - p.y[i]);
+    sum += p.area[j] * w.w(r);
+  }
+  return sum / p.area[i];
+}
+
 void sum_number_density(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w) {
-  parallel_for(p.fluid_count(), [&](std::size_t i) {
-    double sum = 0.0;
-    for (std::uint32_t j : nl.row(i)) {
-      const double r = distance(p.x[j] - p.x[i], p.y[j] - p.y[i]);
-      sum += p.area[j] * w.w(r);
-    }
-    p.number_density[i] = sum / p.area[i];
-  });
+  parallel_for(p.fluid_count(),
+               [&](std::size_t i) { p.number_density[i] = number_density_at(p, nl, w, i); });
 }
 
 namespace {
 
 // Smallest separation treated as distinct: coincident points have no direction.
 constexpr double coincident_m = 1e-12;
+
+}  // namespace
+
+std::array<double, 2> mps_gradient_at(const SweParticles& p, const neighbors::NeighborList& nl,
+                                      const Kernel& w, std::size_t i, std::span<const double> phi,
+                                      double number_density) {
+  constexpr double dimension = 2.0;  // D of eq 6
+  double sx = 0.0, sy = 0.0;
+  for (std::uint32_t j : nl.row(i)) {
+    const double dx = p.x[j] - p.x[i];
+    const double dy = p.y[j] - p.y[i];
+    const double r2 = dx * dx + dy * dy;
+    if (r2 < coincident_m * coincident_m) continue;
+    const double f = (phi[j] - phi[i]) / r2 * (p.area[j] / p.area[i]) * w.w(std::sqrt(r2));
+    sx += f * dx;
+    sy += f * dy;
+  }
+  if (!(number_density > 0.0)) return {0.0, 0.0};  // an isolated particle feels no gradient
+  return {dimension / number_density * sx, dimension / number_density * sy};
+}
+
+namespace {
 
 void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
                         std::span<double> gx, std::span<double> gy) {
@@ -78,23 +104,10 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
 
 void mps_gradient(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
                   std::span<double> gx, std::span<double> gy) {
-  // eq 6 with phi = h, D = 2.
-  constexpr double dimension = 2.0;
   parallel_for(p.fluid_count(), [&](std::size_t i) {
-    double sx = 0.0, sy = 0.0;
-    for (std::uint32_t j : nl.row(i)) {
-      const double dx = p.x[j] - p.x[i];
-      const double dy = p.y[j] - p.y[i];
-      const double r2 = dx * dx + dy * dy;
-      if (r2 < coincident_m * coincident_m) continue;
-      const double f =
-          (p.depth[j] - p.depth[i]) / r2 * (p.area[j] / p.area[i]) * w.w(std::sqrt(r2));
-      sx += f * dx;
-      sy += f * dy;
-    }
-    const double n_i = p.number_density[i];
-    gx[i] = n_i > 0.0 ? dimension / n_i * sx : 0.0;
-    gy[i] = n_i > 0.0 ? dimension / n_i * sy : 0.0;
+    const auto g = mps_gradient_at(p, nl, w, i, p.depth, p.number_density[i]);
+    gx[i] = g[0];
+    gy[i] = g[1];
   });
 }
 

@@ -52,6 +52,16 @@ void Simulation::sort_by_cell() {
 
 void Simulation::refresh() {
   if (fresh_) return;
+  update_fields();
+  const std::size_t before = particles_.fluid_count();
+  run_effects(Stage::resolution, 0.0);
+  // A resolution effect changed the particle set: the neighbour list and the sums no longer
+  // describe it. Once more, without the resolution stage, so one step splits at most once.
+  if (particles_.fluid_count() != before) update_fields();
+  fresh_ = true;
+}
+
+void Simulation::update_fields() {
   particles_.drop_ghosts();
   // eq 9 with the areas of the previous summation: the radius must be known before the
   // neighbours (and so the new areas) can be found.
@@ -77,7 +87,6 @@ void Simulation::refresh() {
     }
     boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
   }
-  fresh_ = true;
 }
 
 double Simulation::stable_time_step() {
@@ -159,7 +168,7 @@ double Simulation::relative_volume_change() const {
 std::vector<EffectTime> Simulation::effect_times() const {
   std::vector<EffectTime> out;
   for (std::size_t k = 0; k < effects_.size(); ++k) {
-    out.push_back({std::string(effects_[k]->name()), effect_seconds_[k]});
+    out.push_back({std::string(effects_[k]->name()), effect_seconds_[k], effects_[k]->report()});
   }
   return out;
 }

@@ -19,6 +19,7 @@ class DomainOutflow final : public swe::Effect {
   std::string_view name() const override { return "domain outflow"; }
   swe::Stage stage() const override { return swe::Stage::topology; }
   void apply(swe::StepContext& context) override;
+  std::string report() const override;
 
   std::size_t removed_particles() const { return removed_; }
 
@@ -26,6 +27,7 @@ class DomainOutflow final : public swe::Effect {
   Box domain_;
   std::vector<std::uint8_t> outside_;
   std::size_t removed_ = 0;
+  double removed_m3_ = 0.0;
 };
 
 }  // namespace swemps::boundaries

@@ -7,8 +7,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/settings.hpp"
 
 namespace swemps::scenario {
@@ -36,6 +38,17 @@ struct Wall {
   WallCondition condition = WallCondition::slip;
 };
 
+// Analytic beds. No bed at all (the default) is a flat bed at z = 0 and costs nothing.
+struct PlaneBedSpec {
+  double elevation_m = 0.0;            // z_b at the origin
+  std::array<double, 2> slope{0.0, 0.0};  // dz_b/dx, dz_b/dy (m/m)
+  Point origin_m{0.0, 0.0};
+};
+struct ProfileBedSpec {
+  std::vector<Point> points;  // (x, z_b) in m, x strictly increasing; level beyond the ends
+};
+using BedSpec = std::variant<std::monostate, PlaneBedSpec, ProfileBedSpec>;
+
 struct GridSpec {
   double spacing_m = 0.0;
   Rectangle bounds;  // cell centres at bounds.x_min + (i + 0.5) spacing_m, ...
@@ -56,6 +69,9 @@ struct Scenario {
   Rectangle domain;  // particles leaving it are removed and their volume booked
   std::vector<WaterBody> water;
   std::vector<Wall> walls;
+  BedSpec bed;
+  std::optional<double> manning_n;  // s m^-1/3; absent: no friction
+  std::optional<splitting::SplittingSettings> splitting;  // absent: no splitting
   Output output;
 };
 

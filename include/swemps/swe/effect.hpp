@@ -5,6 +5,7 @@
 // itself never asks whether an effect is enabled, so an absent effect costs nothing.
 
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "swemps/kernels/spiky.hpp"
@@ -24,20 +25,22 @@ struct VolumeLedger {
 
 // Where in the step an effect acts (the step order is documented in simulation.hpp).
 enum class Stage {
-  forces,    // after the depth-gradient acceleration: add accelerations (bed slope ...)
-  velocity,  // after the velocity update, before the move (semi-implicit friction ...)
-  topology,  // after the move, ghosts dropped: add or remove particles (splitting, outflow)
+  resolution,  // in refresh(), after the depth summation, ghosts present: may replace and add
+               // particles (splitting); the simulation then redoes the refresh once
+  forces,      // after the depth-gradient acceleration: add accelerations (bed slope ...)
+  velocity,    // after the velocity update, before the move (semi-implicit friction ...)
+  topology,    // after the move, ghosts dropped: add or remove particles (outflow, inflow)
 };
 
 struct StepContext {
   particles::SweParticles& particles;
-  const neighbors::NeighborList& neighbors;  // valid in the forces and velocity stages
+  const neighbors::NeighborList& neighbors;  // valid in the resolution, forces and velocity stages
   const kernels::Spiky<2>& kernel;
   std::span<double> accel_x, accel_y;  // m s^-2, fluid particles; forces stage
   const Settings& settings;
   VolumeLedger& ledger;
   double time_s;  // at the start of the step
-  double dt_s;
+  double dt_s;  // 0 in the resolution stage (the step is not yet chosen)
 };
 
 class Effect {
@@ -46,6 +49,8 @@ class Effect {
   virtual std::string_view name() const = 0;
   virtual Stage stage() const = 0;
   virtual void apply(StepContext& context) = 0;
+  // One line for the closing summary (what the effect did over the run); empty for none.
+  virtual std::string report() const { return {}; }
 };
 
 }  // namespace swemps::swe

@@ -4,6 +4,7 @@
 // neighbours. Every particle's result depends only on its own row, in a fixed order, so
 // results are the same for any number of threads.
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,17 @@ void sum_depth(particles::SweParticles& p, const neighbors::NeighborList& nl, co
 // eq 5: n_i = sum_{j != i} (A_j / A_i) w_ij.
 void sum_number_density(particles::SweParticles& p, const neighbors::NeighborList& nl,
                         const Kernel& w);
+
+// eq 5 at one fluid particle.
+double number_density_at(const particles::SweParticles& p, const neighbors::NeighborList& nl,
+                         const Kernel& w, std::size_t i);
+
+// eq 6 at one fluid particle for any per-particle field phi (indexed like the particles,
+// ghosts included), given that particle's number density n_i (eq 5).
+std::array<double, 2> mps_gradient_at(const particles::SweParticles& p,
+                                      const neighbors::NeighborList& nl, const Kernel& w,
+                                      std::size_t i, std::span<const double> phi,
+                                      double number_density);
 
 // Gradient of the depth h at every fluid particle, by the chosen variant (see Settings).
 // The mps variant needs number_density (eq 5) to be current.

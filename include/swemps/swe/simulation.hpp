@@ -11,8 +11,9 @@
 //  1. refresh(): sort fluid particles by cell (neighbours near in memory), take r_e from
 //     the largest area of the previous summation (eq 9: one radius for all, so forces are
 //     symmetric), add wall ghosts, build the neighbour list, sum depth (eq 7) and A = V/h,
-//     copy them to the ghosts. refresh() is also what output calls, so the fields written
-//     at time t are those the next step uses.
+//     copy them to the ghosts. Then resolution-stage effects (splitting); if they changed
+//     the particles, all of this once more. refresh() is also what output calls, so the
+//     fields written at time t are those the next step uses.
 //  2. dt from CFL (eq 13) on the fresh depth and area.
 //  3. a = -g grad h (the chosen variant), then forces-stage effects add to a.
 //  4. u += dt a (symplectic Euler: the new velocity moves the particle), then velocity-stage
@@ -49,6 +50,7 @@ struct PhaseTimes {  // wall-clock seconds spent in each part of the step
 struct EffectTime {
   std::string name;
   double seconds = 0.0;
+  std::string report;  // the effect's own one-line account of what it did
 };
 
 class Simulation {
@@ -93,6 +95,7 @@ class Simulation {
   std::vector<EffectTime> effect_times() const;
 
  private:
+  void update_fields();  // refresh() without the resolution stage
   void sort_by_cell();
   void run_effects(Stage stage, double dt_s);
 

@@ -1,0 +1,73 @@
+#pragma once
+// Dynamic particle splitting (method.md section 1, eqs 10-12 and appendix A).
+//
+// Where water thins, particles drift apart and the depth a particle can represent is
+// bounded below by its own volume (docs/verification.md, "the tip"). A particle whose area
+// has grown past `area_ratio_threshold` times its reference area A_0 is split in two along the
+// direction in which its neighbours spread (the eigenvector of the larger eigenvalue of the
+// moment matrix C_i = sum_j w_ij x_ij x_ij^T), the daughters placed at x_i +- (alpha_s l_i / 2) t_i
+// (eq 10). Each daughter takes the depth eq 12 gives at its position times half the parent's
+// area as its volume, so the two volumes add up to the parent's exactly; their velocities are
+// eq 12's, shifted by one common amount so that momentum is conserved exactly too. Daughters
+// keep the parent's A_0: it is the resolution the scene asked for, and halving it would make
+// every daughter split again at once.
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "swemps/boundaries/ghost_walls.hpp"
+#include "swemps/swe/effect.hpp"
+
+namespace swemps::splitting {
+
+struct SplittingSettings {
+  double area_ratio_threshold = 1.5;  // split when A > threshold A_0
+  double alpha_s = 0.7;               // daughter separation, in particle sizes l = sqrt(A) (eq 10)
+  std::size_t max_particles = 0;      // no split beyond this many particles; 0 = no cap
+};
+
+// Symmetric 2x2 moment matrix of appendix A.
+struct MomentMatrix {
+  double xx = 0.0, xy = 0.0, yy = 0.0;
+};
+
+MomentMatrix moment_matrix(const particles::SweParticles& p, const neighbors::NeighborList& nl,
+                           const kernels::Spiky<2>& w, std::size_t i);
+
+// Unit eigenvector for the larger eigenvalue of C (eq 11 / appendix A). For an isotropic C
+// every direction qualifies; x is returned so the choice is reproducible.
+std::array<double, 2> split_direction(const MomentMatrix& c);
+
+class ParticleSplitting final : public swe::Effect {
+ public:
+  ParticleSplitting(SplittingSettings settings, std::vector<boundaries::WallSegment> walls);
+
+  std::string_view name() const override { return "particle splitting"; }
+  swe::Stage stage() const override { return swe::Stage::resolution; }
+  void apply(swe::StepContext& context) override;
+  std::string report() const override;
+
+  std::size_t splits() const { return splits_; }
+  std::size_t refused_at_walls() const { return refused_at_walls_; }
+  std::size_t refused_at_cap() const { return refused_at_cap_; }
+
+ private:
+  struct Daughter {
+    double x, y, u, v, volume, depth;
+  };
+  struct Plan {
+    std::size_t parent;
+    Daughter a, b;
+    double area;  // each daughter's area until the next summation: half the parent's
+  };
+  bool crosses_wall(double x0, double y0, double x1, double y1) const;
+  bool plan_split(const swe::StepContext& context, std::size_t i, Plan& plan) const;
+
+  SplittingSettings settings_;
+  std::vector<boundaries::WallSegment> walls_;
+  std::vector<Plan> plans_;
+  std::size_t splits_ = 0, refused_at_walls_ = 0, refused_at_cap_ = 0;
+};
+
+}  // namespace swemps::splitting
