@@ -85,7 +85,6 @@ swe::Simulation make_simulation(const Scenario& scene) {
                          std::move(effects));
 }
 
-
 swe::RegularGrid output_grid(const Scenario& scene) {
   const auto& g = scene.output.grid;
   const double width = g.bounds.x_max - g.bounds.x_min;

@@ -94,10 +94,10 @@ bool ParticleSplitting::plan_split(const swe::StepContext& context, std::size_t 
   const double shift = -(volume_a - volume_b) / volume;
   plan.parent = i;
   plan.area = 0.5 * p.area[i];
-  plan.a = {p.x[i] + offset[0], p.y[i] + offset[1], p.u[i] + du + shift * du,
-            p.v[i] + dv + shift * dv, volume_a, h + dh};
-  plan.b = {p.x[i] - offset[0], p.y[i] - offset[1], p.u[i] - du + shift * du,
-            p.v[i] - dv + shift * dv, volume_b, h - dh};
+  plan.a = {p.x[i] + offset[0],       p.y[i] + offset[1], p.u[i] + du + shift * du,
+            p.v[i] + dv + shift * dv, volume_a,           h + dh};
+  plan.b = {p.x[i] - offset[0],       p.y[i] - offset[1], p.u[i] - du + shift * du,
+            p.v[i] - dv + shift * dv, volume_b,           h - dh};
   return true;
 }
 
@@ -143,7 +143,8 @@ void ParticleSplitting::apply(swe::StepContext& context) {
 std::string ParticleSplitting::report() const {
   std::string text = std::to_string(splits_) + " splits";
   if (refused_at_walls_ > 0) {
-    text += ", " + std::to_string(refused_at_walls_) + " split attempts refused (a daughter would cross a wall)";
+    text += ", " + std::to_string(refused_at_walls_) +
+            " split attempts refused (a daughter would cross a wall)";
   }
   if (refused_at_cap_ > 0) {
     text += ", " + std::to_string(refused_at_cap_) + " split attempts refused at the cap of " +

@@ -33,6 +33,8 @@ double ProfileBed::elevation(double x, double) const {
   return points_[k][1] + slope * (x - points_[k][0]);
 }
 
-std::array<double, 2> ProfileBed::gradient(double x, double) const { return {segment(x).second, 0.0}; }
+std::array<double, 2> ProfileBed::gradient(double x, double) const {
+  return {segment(x).second, 0.0};
+}
 
 }  // namespace swemps::swe

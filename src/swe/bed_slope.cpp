@@ -15,8 +15,8 @@ void BedSlope::apply(StepContext& context) {
   switch (gradient_) {
     case GradientVariant::mps:
       parallel_for(n, [&](std::size_t i) {
-        const auto grad = mps_gradient_at(p, context.neighbors, context.kernel, i, p.bed,
-                                          p.number_density[i]);
+        const auto grad =
+            mps_gradient_at(p, context.neighbors, context.kernel, i, p.bed, p.number_density[i]);
         context.accel_x[i] -= g * grad[0];
         context.accel_y[i] -= g * grad[1];
       });

@@ -11,7 +11,7 @@ namespace swemps::swe {
 class BedSource {
  public:
   virtual ~BedSource() = default;
-  virtual double elevation(double x_m, double y_m) const = 0;                 // z_b, m
+  virtual double elevation(double x_m, double y_m) const = 0;                // z_b, m
   virtual std::array<double, 2> gradient(double x_m, double y_m) const = 0;  // dz_b/dx, dz_b/dy
 };
 

@@ -40,7 +40,7 @@ struct StepContext {
   const Settings& settings;
   VolumeLedger& ledger;
   double time_s;  // at the start of the step
-  double dt_s;  // 0 in the resolution stage (the step is not yet chosen)
+  double dt_s;    // 0 in the resolution stage (the step is not yet chosen)
 };
 
 class Effect {
