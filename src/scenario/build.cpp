@@ -42,10 +42,9 @@ boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
   return boundaries::GhostWalls(std::move(segments));
 }
 
-// The bed as a source of z_b, or none when the scene's bed is flat (no force, no cost).
+// The bed as a source of z_b, or none when the scene names no bed (flat at z = 0).
 std::shared_ptr<const swe::BedSource> make_bed(const BedSpec& spec) {
   if (const auto* plane = std::get_if<PlaneBedSpec>(&spec)) {
-    if (plane->slope[0] == 0.0 && plane->slope[1] == 0.0) return nullptr;
     return std::make_shared<swe::PlaneBed>(plane->elevation_m, plane->slope, plane->origin_m);
   }
   if (const auto* profile = std::get_if<ProfileBedSpec>(&spec)) {
@@ -65,9 +64,13 @@ swe::Simulation make_simulation(const Scenario& scene) {
         *scene.splitting,
         std::vector<boundaries::WallSegment>(walls.segments().begin(), walls.segments().end())));
   }
-  if (auto bed = make_bed(scene.bed)) {
-    effects.push_back(std::make_unique<swe::BedSlope>(std::move(bed), scene.numerics.gradient));
-  }
+  const auto bed = make_bed(scene.bed);
+  // A level bed exerts no force: its elevation is set once on the particles (and inherited
+  // by daughters), and no effect runs.
+  const auto* plane = std::get_if<PlaneBedSpec>(&scene.bed);
+  const bool level = plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0;
+  if (bed && !level)
+    effects.push_back(std::make_unique<swe::BedSlope>(bed, scene.numerics.gradient));
   if (scene.manning_n) {
     effects.push_back(std::make_unique<swe::ManningFriction>(*scene.manning_n));
   }
@@ -76,7 +79,7 @@ swe::Simulation make_simulation(const Scenario& scene) {
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
   auto particles = seed_water(scene.water);
   // The initial particles stand on the bed too (written with the first output).
-  if (auto bed = make_bed(scene.bed)) {
+  if (bed) {
     for (std::size_t i = 0; i < particles.fluid_count(); ++i) {
       particles.bed[i] = bed->elevation(particles.x[i], particles.y[i]);
     }

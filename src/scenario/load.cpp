@@ -271,14 +271,17 @@ std::array<double, 2> pair(const json& v, const std::string& path, const std::st
           finite_number(v[1], element_path(path, 1), expected)};
 }
 
-std::vector<Point> points(const json& v, const std::string& path, std::size_t min_count) {
-  const std::string expected =
-      "an array of at least " + std::to_string(min_count) + " [x, y] points (metres)";
+// `coordinates` names the pair, "x, y" for map points, "x, z" for a bed profile.
+std::vector<Point> points(const json& v, const std::string& path, std::size_t min_count,
+                          const std::string& coordinates = "x, y") {
+  const std::string expected = "an array of at least " + std::to_string(min_count) + " [" +
+                               coordinates + "] points (metres)";
   if (!v.is_array() || v.size() < min_count) throw ScenarioError(path, describe(v), expected);
   std::vector<Point> out;
   out.reserve(v.size());
   for (std::size_t i = 0; i < v.size(); ++i) {
-    out.push_back(pair(v[i], element_path(path, i), "an [x, y] pair of numbers (metres)"));
+    out.push_back(
+        pair(v[i], element_path(path, i), "an [" + coordinates + "] pair of numbers (metres)"));
   }
   return out;
 }
@@ -553,7 +556,9 @@ BedSpec read_bed(const json* v) {
   const json* plane = o.find("plane");
   const json* profile = o.find("profile_x");
   if ((plane != nullptr) == (profile != nullptr)) {
-    throw ScenarioError(path, plane ? "both \"plane\" and \"profile_x\"" : "neither kind", one_kind);
+    throw ScenarioError(
+        path, plane ? "both \"plane\" and \"profile_x\"" : "neither \"plane\" nor \"profile_x\"",
+        one_kind);
   }
   if (plane) {
     const Object po(*plane, o.path("plane"), {"elevation", "slope", "origin"},
@@ -569,7 +574,7 @@ BedSpec read_bed(const json* v) {
     return spec;
   }
   ProfileBedSpec spec;
-  spec.points = points(*profile, o.path("profile_x"), 2);
+  spec.points = points(*profile, o.path("profile_x"), 2, "x, z");
   for (std::size_t i = 1; i < spec.points.size(); ++i) {
     if (!(spec.points[i][0] > spec.points[i - 1][0])) {
       throw ScenarioError(element_path(o.path("profile_x"), i), "x = " + fmt(spec.points[i][0]),
@@ -601,7 +606,7 @@ std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   const double cap = number(o, "max_particles", "a whole number >= 0 (0: no cap)", 0.0);
   if (cap < 0.0 || cap != std::floor(cap) || cap > 4e9) {
     throw ScenarioError(o.path("max_particles"), describe(*o.find("max_particles")),
-                        "a whole number >= 0 (0: no cap)");
+                        "a whole number from 0 (no cap) to 4e9");
   }
   s.max_particles = static_cast<std::size_t>(cap);
   return s;

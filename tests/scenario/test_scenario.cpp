@@ -1,12 +1,15 @@
 // Scenario files: broken scenes must fail with a message that points at the problem, valid
 // scenes must arrive field by field, and omitted keys must take their documented defaults.
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "swemps/scenario/scenario.hpp"
@@ -16,6 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using nlohmann::json;
+using swemps::scenario::PlaneBedSpec;
+using swemps::scenario::ProfileBedSpec;
 using swemps::scenario::ScenarioError;
 
 // The smallest valid scene; broken cases are small edits of it, so each fails for one reason.
@@ -162,6 +167,72 @@ std::vector<Broken> broken_scenes() {
   };
 }
 
+// The minimal scene with one extra top-level key, given as JSON text.
+std::string with_key(const std::string& key, const std::string& value) {
+  return edited([&](json& s) { s[key] = json::parse(value); });
+}
+
+// Broken bed, friction and splitting sections. Here `path` is the whole json_path(), so a
+// message that points at the parent object (or at the wrong point) fails.
+std::vector<Broken> broken_effect_scenes() {
+  return {
+      {"misspelt friction key", with_key("frction", R"({"manning_n": 0.01})"), "/frction",
+       "did you mean \"friction\"?"},
+      {"bed not an object", with_key("bed", R"([[0, 0], [1, 1]])"), "/bed",
+       "found an array of 2 elements, expected an object with exactly one of \"plane\" or "
+       "\"profile_x\""},
+      {"bed with both plane and profile_x",
+       with_key("bed", R"({"plane": {"slope": [0.1, 0]}, "profile_x": [[0, 0], [1, 1]]})"), "/bed",
+       "found both \"plane\" and \"profile_x\", expected exactly one of \"plane\" or "
+       "\"profile_x\""},
+      {"bed with neither plane nor profile_x", with_key("bed", "{}"), "/bed",
+       "expected exactly one of \"plane\" or \"profile_x\""},
+      {"misspelt bed kind", with_key("bed", R"({"plane_": {}})"), "/bed/plane_",
+       "did you mean \"plane\"?"},
+      {"misspelt plane key", with_key("bed", R"({"plane": {"slop": [0.1, 0]}})"), "/bed/plane/slop",
+       "one of the keys elevation, slope, origin (did you mean \"slope\"?)"},
+      {"plane slope of wrong length", with_key("bed", R"({"plane": {"slope": [0.1]}})"),
+       "/bed/plane/slope", "found an array of 1 element, expected a [dz/dx, dz/dy] pair"},
+      {"plane elevation not a number", with_key("bed", R"({"plane": {"elevation": "0"}})"),
+       "/bed/plane/elevation", "found a string \"0\", expected a number (metres)"},
+      {"profile_x with one point", with_key("bed", R"({"profile_x": [[0, 0]]})"), "/bed/profile_x",
+       "found an array of 1 element, expected an array of at least 2"},
+      {"profile_x with x decreasing", with_key("bed", R"({"profile_x": [[1, 0], [0.5, 1]]})"),
+       "/bed/profile_x/1", "found x = 0.5, expected x greater than the previous point's 1"},
+      {"profile_x with x repeated further on",
+       with_key("bed", R"({"profile_x": [[0, 0], [3.4, 0], [3.4, 0.5], [10, 0.66]]})"),
+       "/bed/profile_x/2", "strictly increasing"},
+      {"profile_x point of wrong length", with_key("bed", R"({"profile_x": [[0, 0], [1, 2, 3]]})"),
+       "/bed/profile_x/1", "found an array of 3 elements"},
+      {"friction as a bare number", with_key("friction", "0.001"), "/friction",
+       "found 0.001, expected an object with \"manning_n\""},
+      {"friction without manning_n", with_key("friction", "{}"), "/friction/manning_n",
+       "found nothing (key missing), expected a number > 0 (s m^-1/3)"},
+      {"zero manning_n", with_key("friction", R"({"manning_n": 0})"), "/friction/manning_n",
+       "found 0, expected a number > 0 (s m^-1/3)"},
+      {"negative manning_n", with_key("friction", R"({"manning_n": -0.01})"), "/friction/manning_n",
+       "found -0.01, expected a number > 0"},
+      {"splitting not an object", with_key("splitting", "true"), "/splitting",
+       "found true, expected an object (empty for the defaults)"},
+      {"splitting threshold of 1", with_key("splitting", R"({"threshold": 1.0})"),
+       "/splitting/threshold", "found 1.0, expected a number in (1, 4]"},
+      {"splitting threshold above 4", with_key("splitting", R"({"threshold": 5})"),
+       "/splitting/threshold", "found 5, expected a number in (1, 4]"},
+      {"zero alpha_s", with_key("splitting", R"({"alpha_s": 0})"), "/splitting/alpha_s",
+       "found 0, expected a number in (0, 1]"},
+      {"alpha_s above 1", with_key("splitting", R"({"alpha_s": 1.5})"), "/splitting/alpha_s",
+       "found 1.5, expected a number in (0, 1]"},
+      {"negative max_particles", with_key("splitting", R"({"max_particles": -1})"),
+       "/splitting/max_particles", "found -1, expected a whole number from 0 (no cap) to 4e9"},
+      {"fractional max_particles", with_key("splitting", R"({"max_particles": 2.5})"),
+       "/splitting/max_particles", "found 2.5, expected a whole number from 0"},
+      {"max_particles as a string", with_key("splitting", R"({"max_particles": "100"})"),
+       "/splitting/max_particles", "found a string \"100\""},
+      {"misspelt splitting key", with_key("splitting", R"({"treshold": 2})"), "/splitting/treshold",
+       "one of the keys threshold, alpha_s, max_particles (did you mean \"threshold\"?)"},
+  };
+}
+
 }  // namespace
 
 TEST_CASE("broken scenes name the offending JSON path and say what was expected", "[scenario]") {
@@ -175,6 +246,21 @@ TEST_CASE("broken scenes name the offending JSON path and say what was expected"
       CHECK_THAT(e.json_path(), Contains(c.path));
       CHECK_THAT(std::string(e.what()), Contains(c.message));
       CHECK_THAT(std::string(e.what()), Contains("scenario error at "));
+    }
+    CHECK(threw);
+  }
+}
+
+TEST_CASE("broken bed, friction and splitting sections point at the exact key", "[scenario]") {
+  for (const Broken& c : broken_effect_scenes()) {
+    INFO("case: " << c.label << "\ntext:\n" << c.text);
+    bool threw = false;
+    try {
+      parse_text(c.text);
+    } catch (const ScenarioError& e) {
+      threw = true;
+      CHECK(e.json_path() == c.path);
+      CHECK_THAT(std::string(e.what()), Contains(c.message));
     }
     CHECK(threw);
   }
@@ -207,6 +293,9 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
       {"polyline": [[-1, -2], [10, -2]], "condition": "no_slip"},
       {"polyline": [[0, 3], [0, 2], [1, 2]]}
     ],
+    "bed": {"plane": {"elevation": -0.2, "slope": [0.1, -0.05], "origin": [3.4, 1.0]}},
+    "friction": {"manning_n": 0.025},
+    "splitting": {"threshold": 2.0, "alpha_s": 0.5, "max_particles": 100000},
     "output": {
       "path": "results/../out/dam.nc",
       "times": [1.0, 0.5, 2.0, 0.5],
@@ -248,6 +337,18 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   CHECK(s.walls[1].polyline.size() == 3);
   CHECK(s.walls[1].condition == swemps::scenario::WallCondition::slip);
 
+  const auto* plane = std::get_if<PlaneBedSpec>(&s.bed);
+  REQUIRE(plane != nullptr);
+  CHECK(plane->elevation_m == -0.2);
+  CHECK(plane->slope == std::array<double, 2>{0.1, -0.05});
+  CHECK(plane->origin_m == swemps::scenario::Point{3.4, 1.0});
+  REQUIRE(s.manning_n.has_value());
+  CHECK(*s.manning_n == 0.025);
+  REQUIRE(s.splitting.has_value());
+  CHECK(s.splitting->area_ratio_threshold == 2.0);
+  CHECK(s.splitting->alpha_s == 0.5);
+  CHECK(s.splitting->max_particles == 100000);
+
   CHECK(s.output.path == (fs::absolute(base) / "out" / "dam.nc").lexically_normal());
   CHECK(s.output.times_s == std::vector<double>{0.5, 1.0, 2.0});
   CHECK(s.output.grid.spacing_m == 0.2);
@@ -274,6 +375,9 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.numerics.min_time_step_s == 1e-8);
   CHECK(s.water[0].velocity_m_s == std::array<double, 2>{0.0, 0.0});
   CHECK(s.walls.empty());
+  CHECK(std::holds_alternative<std::monostate>(s.bed));  // flat bed at z = 0
+  CHECK_FALSE(s.manning_n.has_value());                  // no friction
+  CHECK_FALSE(s.splitting.has_value());                  // no splitting
   CHECK(s.output.times_s == std::vector<double>{0.5});
   CHECK(s.output.grid.spacing_m == Approx(0.02));  // half the finer of 0.1 and 0.04
   CHECK(s.output.grid.bounds.x_min == s.domain.x_min);
@@ -283,6 +387,78 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.output.write_particles);
   CHECK(s.output.path.is_absolute());
   CHECK(s.output.path == (fs::absolute(base) / "ritter.nc").lexically_normal());
+}
+
+TEST_CASE("bed, friction and splitting arrive as given, with defaults for what is left out",
+          "[scenario]") {
+  SECTION("a plane with only a slope is level with the origin at z = 0") {
+    const auto s = parse_text(with_key("bed", R"({"plane": {"slope": [0.1, 0]}})"));
+    const auto* plane = std::get_if<PlaneBedSpec>(&s.bed);
+    REQUIRE(plane != nullptr);
+    CHECK(plane->elevation_m == 0.0);
+    CHECK(plane->slope == std::array<double, 2>{0.1, 0.0});
+    CHECK(plane->origin_m == swemps::scenario::Point{0.0, 0.0});
+  }
+  SECTION("an empty plane is the flat bed") {
+    const auto s = parse_text(with_key("bed", R"({"plane": {}})"));
+    const auto* plane = std::get_if<PlaneBedSpec>(&s.bed);
+    REQUIRE(plane != nullptr);
+    CHECK(plane->elevation_m == 0.0);
+    CHECK(plane->slope == std::array<double, 2>{0.0, 0.0});
+    CHECK(plane->origin_m == swemps::scenario::Point{0.0, 0.0});
+  }
+  SECTION("profile points are kept in the order and at the values given") {
+    const auto s =
+        parse_text(with_key("bed", R"({"profile_x": [[-1, 0.5], [3.4, 0], [10, 0.66]]})"));
+    const auto* profile = std::get_if<ProfileBedSpec>(&s.bed);
+    REQUIRE(profile != nullptr);
+    const std::vector<swemps::scenario::Point> expected{{-1.0, 0.5}, {3.4, 0.0}, {10.0, 0.66}};
+    CHECK(profile->points == expected);
+  }
+  SECTION("a profile of two points is enough") {
+    const auto s = parse_text(with_key("bed", R"({"profile_x": [[0, 0], [1, 0]]})"));
+    const auto* profile = std::get_if<ProfileBedSpec>(&s.bed);
+    REQUIRE(profile != nullptr);
+    CHECK(profile->points.size() == 2);
+  }
+  SECTION("friction stores Manning's n") {
+    const auto s = parse_text(with_key("friction", R"({"manning_n": 0.001})"));
+    REQUIRE(s.manning_n.has_value());
+    CHECK(*s.manning_n == 0.001);
+    CHECK(std::holds_alternative<std::monostate>(s.bed));
+    CHECK_FALSE(s.splitting.has_value());
+  }
+  SECTION("an empty splitting object switches splitting on with the defaults") {
+    const auto s = parse_text(with_key("splitting", "{}"));
+    REQUIRE(s.splitting.has_value());
+    CHECK(s.splitting->area_ratio_threshold == 1.5);
+    CHECK(s.splitting->alpha_s == 0.7);
+    CHECK(s.splitting->max_particles == 0);
+    CHECK_FALSE(s.manning_n.has_value());
+  }
+  SECTION("splitting keys left out keep their defaults") {
+    const auto s = parse_text(with_key("splitting", R"({"alpha_s": 0.4})"));
+    REQUIRE(s.splitting.has_value());
+    CHECK(s.splitting->area_ratio_threshold == 1.5);
+    CHECK(s.splitting->alpha_s == 0.4);
+    CHECK(s.splitting->max_particles == 0);
+  }
+  SECTION("splitting limits are inclusive at the top") {
+    const auto s =
+        parse_text(with_key("splitting", R"({"threshold": 4, "alpha_s": 1, "max_particles": 0})"));
+    REQUIRE(s.splitting.has_value());
+    CHECK(s.splitting->area_ratio_threshold == 4.0);
+    CHECK(s.splitting->alpha_s == 1.0);
+    CHECK(s.splitting->max_particles == 0);
+  }
+  SECTION("explicit splitting values are stored") {
+    const auto s = parse_text(
+        with_key("splitting", R"({"threshold": 1.8, "alpha_s": 0.6, "max_particles": 250000})"));
+    REQUIRE(s.splitting.has_value());
+    CHECK(s.splitting->area_ratio_threshold == 1.8);
+    CHECK(s.splitting->alpha_s == 0.6);
+    CHECK(s.splitting->max_particles == 250000);
+  }
 }
 
 TEST_CASE("an output interval gives its multiples and end_time", "[scenario]") {
@@ -337,15 +513,63 @@ TEST_CASE("load() of a missing file says it cannot read it", "[scenario]") {
   }
 }
 
-TEST_CASE("the shipped Ritter case parses", "[scenario]") {
-  const fs::path file = fs::path(SWEMPS_SOURCE_DIR) / "cases" / "ritter" / "scenario.json";
+namespace {
+
+// Loads cases/<name>/scenario.json, or returns nothing (with a warning) while it does not exist.
+std::optional<swemps::scenario::Scenario> load_shipped(const std::string& name) {
+  const fs::path file = fs::path(SWEMPS_SOURCE_DIR) / "cases" / name / "scenario.json";
   if (!fs::exists(file)) {
     WARN("skipped: " << file.string() << " does not exist yet");
-    return;
+    return std::nullopt;
   }
-  const auto s = swemps::scenario::load(file);
-  CHECK(s.end_time_s > 0.0);
-  CHECK_FALSE(s.water.empty());
-  CHECK(s.output.path.is_absolute());
-  CHECK(s.output.times_s.back() == s.end_time_s);
+  return swemps::scenario::load(file);
+}
+
+}  // namespace
+
+TEST_CASE("the shipped cases parse", "[scenario]") {
+  SECTION("every case is a complete scene") {
+    const std::vector<std::string> names{"ritter", "ritter-splitting", "runup"};
+    for (const std::string& name : names) {
+      INFO("case: " << name);
+      const auto s = load_shipped(name);
+      if (!s) continue;
+      CHECK(s->name == name);
+      CHECK(s->end_time_s > 0.0);
+      CHECK_FALSE(s->water.empty());
+      CHECK(s->output.path.is_absolute());
+      CHECK(s->output.times_s.back() == s->end_time_s);
+    }
+  }
+
+  SECTION("ritter: flat, frictionless, no splitting") {
+    if (const auto s = load_shipped("ritter")) {
+      CHECK(std::holds_alternative<std::monostate>(s->bed));
+      CHECK_FALSE(s->manning_n.has_value());
+      CHECK_FALSE(s->splitting.has_value());
+    }
+  }
+  SECTION("ritter-splitting: the Ritter scene with splitting") {
+    if (const auto s = load_shipped("ritter-splitting")) {
+      CHECK(std::holds_alternative<std::monostate>(s->bed));
+      CHECK_FALSE(s->manning_n.has_value());
+      REQUIRE(s->splitting.has_value());
+      CHECK(s->splitting->area_ratio_threshold == 1.5);
+      CHECK(s->splitting->alpha_s == 0.7);
+    }
+  }
+  SECTION("runup: a profile bed, friction and splitting") {
+    if (const auto s = load_shipped("runup")) {
+      const auto* profile = std::get_if<ProfileBedSpec>(&s->bed);
+      REQUIRE(profile != nullptr);
+      const std::vector<swemps::scenario::Point> expected{{3.4, 0.0}, {10.0, 0.66}};
+      CHECK(profile->points == expected);
+      REQUIRE(s->manning_n.has_value());
+      CHECK(*s->manning_n == 0.001);
+      REQUIRE(s->splitting.has_value());
+      CHECK(s->splitting->area_ratio_threshold == 1.5);
+      CHECK(s->splitting->alpha_s == 0.7);
+      CHECK(s->splitting->max_particles == 0);
+    }
+  }
 }
