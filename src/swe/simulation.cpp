@@ -81,11 +81,11 @@ void Simulation::update_fields() {
   {
     ScopedTimer timer(phase_times_.depth);
     sum_depth(particles_, neighbor_list_, kernel_);
+    boundaries::GhostWalls::copy_fields_to_ghosts(particles_);  // eq 5 and eq 6 read ghosts' h, A
+    // Only eq 6 needs the number density (ghosts' own n is never read).
     if (settings_.gradient == GradientVariant::mps) {
-      boundaries::GhostWalls::copy_fields_to_ghosts(particles_);  // eq 5 needs ghost areas
       sum_number_density(particles_, neighbor_list_, kernel_);
     }
-    boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
   }
 }
 
