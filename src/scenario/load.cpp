@@ -593,7 +593,7 @@ std::optional<double> read_friction(const json* v) {
 
 std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   if (v == nullptr) return std::nullopt;
-  const Object o(*v, "/splitting", {"threshold", "alpha_s", "max_particles"},
+  const Object o(*v, "/splitting", {"threshold", "alpha_s", "max_particles", "axis"},
                  "an object (empty for the defaults)");
   splitting::SplittingSettings s;
   // A threshold at or below 1 splits particles that have not grown; above 4 the tip is
@@ -609,6 +609,8 @@ std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
                         "a whole number from 0 (no cap) to 4e9");
   }
   s.max_particles = static_cast<std::size_t>(cap);
+  const std::string_view axis = choice(o, "axis", {"minor", "major"}, "minor");
+  s.axis = axis == "major" ? splitting::SplitAxis::major : splitting::SplitAxis::minor;
   return s;
 }
 

@@ -22,7 +22,9 @@ MomentMatrix moment_matrix(const particles::SweParticles& p, const neighbors::Ne
   return c;
 }
 
-std::array<double, 2> split_direction(const MomentMatrix& c) {
+namespace {
+
+std::array<double, 2> major_axis(const MomentMatrix& c) {
   // Larger eigenvalue of [[xx, xy], [xy, yy]]; of the two equivalent forms of its eigenvector,
   // (lambda - yy, xy) and (xy, lambda - xx), take the longer one: it is the better
   // conditioned, and it is exact for a diagonal matrix.
@@ -36,6 +38,15 @@ std::array<double, 2> split_direction(const MomentMatrix& c) {
   // Isotropic to round-off: no preferred direction.
   if (!(length > 1e-12 * std::max(std::abs(lambda), 1e-300))) return {1.0, 0.0};
   return {v[0] / length, v[1] / length};
+}
+
+}  // namespace
+
+std::array<double, 2> split_direction(const MomentMatrix& c, SplitAxis axis) {
+  const auto t = major_axis(c);
+  if (axis == SplitAxis::major) return t;
+  // C is symmetric: its other eigenvector is perpendicular to the first.
+  return {-t[1], t[0]};
 }
 
 ParticleSplitting::ParticleSplitting(SplittingSettings settings,
@@ -52,7 +63,7 @@ bool ParticleSplitting::plan_split(const swe::StepContext& context, std::size_t 
                                    Plan& plan) const {
   const auto& p = context.particles;
   const double half_separation = 0.5 * settings_.alpha_s * std::sqrt(p.area[i]);  // eq 10
-  const auto t = split_direction(moment_matrix(p, context.neighbors, context.kernel, i));
+  const auto t = split_direction(moment_matrix(p, context.neighbors, context.kernel, i), settings_.axis);
   // A daughter must stay on the parent's side of every wall: along t if possible, else
   // across it (near a wall the neighbours often spread along it anyway).
   std::array<double, 2> offset{};

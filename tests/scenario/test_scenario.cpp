@@ -229,7 +229,9 @@ std::vector<Broken> broken_effect_scenes() {
       {"max_particles as a string", with_key("splitting", R"({"max_particles": "100"})"),
        "/splitting/max_particles", "found a string \"100\""},
       {"misspelt splitting key", with_key("splitting", R"({"treshold": 2})"), "/splitting/treshold",
-       "one of the keys threshold, alpha_s, max_particles (did you mean \"threshold\"?)"},
+       "one of the keys threshold, alpha_s, max_particles, axis (did you mean \"threshold\"?)"},
+      {"unknown split axis", with_key("splitting", R"({"axis": "minr"})"), "/splitting/axis",
+       "expected one of \"minor\", \"major\" (did you mean \"minor\"?)"},
   };
 }
 
@@ -298,7 +300,7 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
     ],
     "bed": {"plane": {"elevation": -0.2, "slope": [0.1, -0.05], "origin": [3.4, 1.0]}},
     "friction": {"manning_n": 0.025},
-    "splitting": {"threshold": 2.0, "alpha_s": 0.5, "max_particles": 100000},
+    "splitting": {"threshold": 2.0, "alpha_s": 0.5, "max_particles": 100000, "axis": "major"},
     "output": {
       "path": "results/../out/dam.nc",
       "times": [1.0, 0.5, 2.0, 0.5],
@@ -351,6 +353,7 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   CHECK(s.splitting->area_ratio_threshold == 2.0);
   CHECK(s.splitting->alpha_s == 0.5);
   CHECK(s.splitting->max_particles == 100000);
+  CHECK(s.splitting->axis == swemps::splitting::SplitAxis::major);
 
   CHECK(s.output.path == (fs::absolute(base) / "out" / "dam.nc").lexically_normal());
   CHECK(s.output.times_s == std::vector<double>{0.5, 1.0, 2.0});

@@ -63,39 +63,60 @@ Scene lattice_with_gradients(int half_width, double initial_area) {
 
 }  // namespace
 
-TEST_CASE("split direction: eigenvector of the larger eigenvalue", "[splitting]") {
-  CHECK(parallelism(split_direction({4.0, 0.0, 1.0}), {1, 0}) == Approx(1.0));
-  CHECK(parallelism(split_direction({1.0, 0.0, 4.0}), {0, 1}) == Approx(1.0));
-  CHECK(parallelism(split_direction({2.0, 2.0, 2.0}), {1, 1}) == Approx(1.0));
-  CHECK(parallelism(split_direction({2.0, -2.0, 2.0}), {1, -1}) == Approx(1.0));
-  // A general matrix: check the eigen-equation C t = lambda t directly.
-  const MomentMatrix c{3.0, 1.2, 0.5};
-  const auto t = split_direction(c);
-  const double lambda = 0.5 * (3.5 + std::sqrt(2.5 * 2.5 + 4 * 1.2 * 1.2));
-  CHECK(c.xx * t[0] + c.xy * t[1] == Approx(lambda * t[0]));
-  CHECK(c.xy * t[0] + c.yy * t[1] == Approx(lambda * t[1]));
-  CHECK(std::hypot(t[0], t[1]) == Approx(1.0));
-  // Isotropic: any direction is right; the answer must still be a unit vector.
-  const auto iso = split_direction({1.0, 0.0, 1.0});
-  CHECK(std::hypot(iso[0], iso[1]) == Approx(1.0));
+TEST_CASE("split direction: eigenvector of the larger or the smaller eigenvalue", "[splitting]") {
+  using splitting::SplitAxis;
+  for (const auto axis : {SplitAxis::major, SplitAxis::minor}) {
+    // The minor axis is the major one turned by 90 degrees.
+    auto expect = [axis](std::array<double, 2> major) {
+      return axis == SplitAxis::major ? major : std::array<double, 2>{-major[1], major[0]};
+    };
+    CHECK(parallelism(split_direction({4.0, 0.0, 1.0}, axis), expect({1, 0})) == Approx(1.0));
+    CHECK(parallelism(split_direction({1.0, 0.0, 4.0}, axis), expect({0, 1})) == Approx(1.0));
+    CHECK(parallelism(split_direction({2.0, 2.0, 2.0}, axis), expect({1, 1})) == Approx(1.0));
+    CHECK(parallelism(split_direction({2.0, -2.0, 2.0}, axis), expect({1, -1})) == Approx(1.0));
+    // A general matrix: check the eigen-equation C t = lambda t directly.
+    const MomentMatrix c{3.0, 1.2, 0.5};
+    const auto t = split_direction(c, axis);
+    const double root = std::sqrt(2.5 * 2.5 + 4 * 1.2 * 1.2);
+    const double lambda = 0.5 * (3.5 + (axis == SplitAxis::major ? root : -root));
+    CHECK(c.xx * t[0] + c.xy * t[1] == Approx(lambda * t[0]));
+    CHECK(c.xy * t[0] + c.yy * t[1] == Approx(lambda * t[1]));
+    CHECK(std::hypot(t[0], t[1]) == Approx(1.0));
+    // Isotropic: any direction is right; the answer must still be a unit vector.
+    const auto iso = split_direction({1.0, 0.0, 1.0}, axis);
+    CHECK(std::hypot(iso[0], iso[1]) == Approx(1.0));
+  }
 }
 
 TEST_CASE("split direction from hand-made neighbour sets", "[splitting]") {
-  auto direction_of = [](const std::vector<std::array<double, 2>>& neighbours) {
+  using splitting::SplitAxis;
+  auto direction_of = [](const std::vector<std::array<double, 2>>& neighbours, SplitAxis axis) {
     Scene s;
     s.add(0.0, 0.0);
     for (const auto& q : neighbours) s.add(q[0], q[1]);
     s.link();
-    return split_direction(splitting::moment_matrix(s.p, s.nl, s.kernel, 0));
+    return split_direction(splitting::moment_matrix(s.p, s.nl, s.kernel, 0), axis);
   };
   const double d = 0.08;
-  // Neighbours spread along x (a row), along y (a column), along the diagonal.
-  CHECK(parallelism(direction_of({{d, 0}, {-d, 0}, {2 * d, 0}, {-2 * d, 0}, {0, 0.5 * d}}),
-                    {1, 0}) == Approx(1.0));
-  CHECK(parallelism(direction_of({{0, d}, {0, -d}, {0, 2 * d}, {0, -2 * d}, {0.5 * d, 0}}),
-                    {0, 1}) == Approx(1.0));
-  CHECK(parallelism(direction_of({{d, d}, {-d, -d}, {2 * d, 2 * d}, {0.3 * d, -0.3 * d}}),
-                    {1, 1}) == Approx(1.0));
+  // Neighbours spread along x (a row), along y (a column), along the diagonal: the major axis
+  // follows them, the minor axis points across.
+  const std::vector<std::array<double, 2>> row{{d, 0}, {-d, 0}, {2 * d, 0}, {-2 * d, 0}, {0, 0.5 * d}};
+  const std::vector<std::array<double, 2>> column{{0, d}, {0, -d}, {0, 2 * d}, {0, -2 * d}, {0.5 * d, 0}};
+  const std::vector<std::array<double, 2>> diagonal{{d, d}, {-d, -d}, {2 * d, 2 * d}, {0.3 * d, -0.3 * d}};
+  CHECK(parallelism(direction_of(row, SplitAxis::major), {1, 0}) == Approx(1.0));
+  CHECK(parallelism(direction_of(row, SplitAxis::minor), {0, 1}) == Approx(1.0));
+  CHECK(parallelism(direction_of(column, SplitAxis::major), {0, 1}) == Approx(1.0));
+  CHECK(parallelism(direction_of(column, SplitAxis::minor), {1, 0}) == Approx(1.0));
+  CHECK(parallelism(direction_of(diagonal, SplitAxis::major), {1, 1}) == Approx(1.0));
+  CHECK(parallelism(direction_of(diagonal, SplitAxis::minor), {1, -1}) == Approx(1.0));
+  // A particle at the head of a front moving in +x: neighbours beside it in its row (spacing
+  // 0.1) and a row behind that has fallen back by 1.5 spacings, nothing ahead. The major axis
+  // lies along the front (y); the minor axis points into the gap along the flow (x), the
+  // direction the default splits in (docs/splitting.md).
+  const std::vector<std::array<double, 2>> front{{0, 0.1}, {0, -0.1}, {0, 0.2}, {0, -0.2},
+                                                 {-0.15, 0}, {-0.15, 0.1}, {-0.15, -0.1}};
+  CHECK(parallelism(direction_of(front, SplitAxis::major), {0, 1}) == Approx(1.0));
+  CHECK(parallelism(direction_of(front, SplitAxis::minor), {1, 0}) == Approx(1.0));
   // A ring of eight: the moment matrix is a multiple of the identity.
   std::vector<std::array<double, 2>> ring;
   for (int k = 0; k < 8; ++k)
