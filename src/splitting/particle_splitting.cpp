@@ -63,7 +63,8 @@ bool ParticleSplitting::plan_split(const swe::StepContext& context, std::size_t 
                                    Plan& plan) const {
   const auto& p = context.particles;
   const double half_separation = 0.5 * settings_.alpha_s * std::sqrt(p.area[i]);  // eq 10
-  const auto t = split_direction(moment_matrix(p, context.neighbors, context.kernel, i), settings_.axis);
+  const auto t =
+      split_direction(moment_matrix(p, context.neighbors, context.kernel, i), settings_.axis);
   // A daughter must stay on the parent's side of every wall: along t if possible, else
   // across it (near a wall the neighbours often spread along it anyway).
   std::array<double, 2> offset{};

@@ -100,9 +100,12 @@ TEST_CASE("split direction from hand-made neighbour sets", "[splitting]") {
   const double d = 0.08;
   // Neighbours spread along x (a row), along y (a column), along the diagonal: the major axis
   // follows them, the minor axis points across.
-  const std::vector<std::array<double, 2>> row{{d, 0}, {-d, 0}, {2 * d, 0}, {-2 * d, 0}, {0, 0.5 * d}};
-  const std::vector<std::array<double, 2>> column{{0, d}, {0, -d}, {0, 2 * d}, {0, -2 * d}, {0.5 * d, 0}};
-  const std::vector<std::array<double, 2>> diagonal{{d, d}, {-d, -d}, {2 * d, 2 * d}, {0.3 * d, -0.3 * d}};
+  const std::vector<std::array<double, 2>> row{
+      {d, 0}, {-d, 0}, {2 * d, 0}, {-2 * d, 0}, {0, 0.5 * d}};
+  const std::vector<std::array<double, 2>> column{
+      {0, d}, {0, -d}, {0, 2 * d}, {0, -2 * d}, {0.5 * d, 0}};
+  const std::vector<std::array<double, 2>> diagonal{
+      {d, d}, {-d, -d}, {2 * d, 2 * d}, {0.3 * d, -0.3 * d}};
   CHECK(parallelism(direction_of(row, SplitAxis::major), {1, 0}) == Approx(1.0));
   CHECK(parallelism(direction_of(row, SplitAxis::minor), {0, 1}) == Approx(1.0));
   CHECK(parallelism(direction_of(column, SplitAxis::major), {0, 1}) == Approx(1.0));
@@ -113,7 +116,7 @@ TEST_CASE("split direction from hand-made neighbour sets", "[splitting]") {
   // 0.1) and a row behind that has fallen back by 1.5 spacings, nothing ahead. The major axis
   // lies along the front (y); the minor axis points into the gap along the flow (x), the
   // direction the default splits in (docs/splitting.md).
-  const std::vector<std::array<double, 2>> front{{0, 0.1}, {0, -0.1}, {0, 0.2}, {0, -0.2},
+  const std::vector<std::array<double, 2>> front{{0, 0.1},   {0, -0.1},    {0, 0.2},     {0, -0.2},
                                                  {-0.15, 0}, {-0.15, 0.1}, {-0.15, -0.1}};
   CHECK(parallelism(direction_of(front, SplitAxis::major), {0, 1}) == Approx(1.0));
   CHECK(parallelism(direction_of(front, SplitAxis::minor), {1, 0}) == Approx(1.0));

@@ -73,7 +73,8 @@ TEST_CASE("seed case 1: splitting thins and advances the Ritter wave tip", "[ver
   INFO("tip without splitting: x = " << without.tip.x_m << " m, h = " << without.tip.depth_m
                                      << " m, error " << tip_error(without));
   INFO("tip with splitting: x = " << with.tip.x_m << " m, h = " << with.tip.depth_m << " m, error "
-                                  << tip_error(with) << ", " << with.final_particles << " particles");
+                                  << tip_error(with) << ", " << with.final_particles
+                                  << " particles");
   CHECK(with.violations == 0);
   CHECK(without.violations == 0);
   CHECK(std::abs(with.relative_volume_change) <= 1e-12);

@@ -14,11 +14,11 @@
 // Splitting along the front crowds the front row and never thins the tip. The smaller
 // eigenvalue's axis points into the gap the particles left, which is what the paper's figure 8
 // shows (the spacing along the flow kept), and it is the default; the printed rule stays
-// available as SplitAxis::major. Each daughter takes the depth eq 12 gives at its position times half the parent's
-// area as its volume, so the two volumes add up to the parent's exactly; their velocities are
-// eq 12's, shifted by one common amount so that momentum is conserved exactly too. Daughters
-// keep the parent's A_0: it is the resolution the scene asked for, and halving it would make
-// every daughter split again at once.
+// available as SplitAxis::major. Each daughter takes the depth eq 12 gives at its position times
+// half the parent's area as its volume, so the two volumes add up to the parent's exactly; their
+// velocities are eq 12's, shifted by one common amount so that momentum is conserved exactly too.
+// Daughters keep the parent's A_0: it is the resolution the scene asked for, and halving it would
+// make every daughter split again at once.
 
 #include <array>
 #include <cstddef>
