@@ -17,21 +17,20 @@ import matplotlib.pyplot as plt  # noqa: E402
 import netCDF4  # noqa: E402
 import numpy as np  # noqa: E402
 
+import ncrecords  # noqa: E402  (beside this script)
+
 
 def read_particles(path, time):
     with netCDF4.Dataset(path) as ds:
-        times = ds["time"][:]
-        k = int(np.argmin(np.abs(times - time))) if time is not None else len(times) - 1
-        counts = ds["particle_count"][:].astype(np.int64)
-        start = int(counts[:k].sum())
-        stop = start + int(counts[k])
+        k, part = ncrecords.record(ds, time)
+        first = ncrecords.record(ds, 0.0)[1]
         return {
-            "t": float(times[k]),
-            "x": ds["particle_x"][start:stop],
-            "y": ds["particle_y"][start:stop],
-            "h": ds["particle_depth"][start:stop],
-            "V": ds["particle_volume"][start:stop],
-            "V0": float(ds["particle_volume"][: int(counts[0])].max()),
+            "t": float(ds["time"][k]),
+            "x": ds["particle_x"][part],
+            "y": ds["particle_y"][part],
+            "h": ds["particle_depth"][part],
+            "V": ds["particle_volume"][part],
+            "V0": float(ds["particle_volume"][first].max()),  # largest at t = 0
         }
 
 

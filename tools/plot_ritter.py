@@ -15,6 +15,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import netCDF4  # noqa: E402
 import numpy as np  # noqa: E402
 
+import ncrecords  # noqa: E402  (beside this script)
+
 
 def ritter_depth(x, t, x_dam, h0, g):
     c0 = np.sqrt(g * h0)
@@ -25,16 +27,12 @@ def ritter_depth(x, t, x_dam, h0, g):
 
 def read_record(path, time):
     with netCDF4.Dataset(path) as ds:
-        times = ds["time"][:]
-        k = int(np.argmin(np.abs(times - time))) if time is not None else len(times) - 1
-        counts = ds["particle_count"][:].astype(np.int64)
-        start = int(counts[:k].sum())
-        stop = start + int(counts[k])
+        k, part = ncrecords.record(ds, time)
         return {
-            "t": float(times[k]),
+            "t": float(ds["time"][k]),
             "g": float(ds.getncattr("gravity_m_s2")),
-            "px": ds["particle_x"][start:stop],
-            "ph": ds["particle_depth"][start:stop],
+            "px": ds["particle_x"][part],
+            "ph": ds["particle_depth"][part],
             "x": ds["x"][:],
             "grid": ds["depth"][k, :, :].mean(axis=0),
         }
