@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <limits>
 #include <memory>
+#include <vector>
 
 #include "swemps/cli/progress.hpp"
 #include "swemps/io/netcdf_writer.hpp"
@@ -21,7 +23,7 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-io::Grid to_io_grid(const swe::RegularGrid& g) { return {g.x0, g.y0, g.dx, g.dy, g.nx, g.ny}; }
+io::Grid to_io_grid(const swe::RegularGrid& g) { return {g.x0, g.y0, g.dx, g.dy, g.nx, g.ny, {}}; }
 
 // Output writing, timed, with I/O failures turned into OutputError.
 class Output {
@@ -35,8 +37,8 @@ class Output {
         command_line, scene.numerics.gravity_m_s2};
     if (!scene.description.empty()) meta.title += ": " + scene.description;
     try {
-      writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, to_io_grid(grid_), meta,
-                                                   scene.output.write_particles);
+      writer_ = std::make_unique<io::NetcdfWriter>(
+          scene.output.path, io::Layout{to_io_grid(grid_), scene.output.write_particles, {}}, meta);
     } catch (const std::runtime_error& e) {
       throw OutputError(e.what());
     }
@@ -47,7 +49,9 @@ class Output {
     sim.refresh();
     const auto depth = swe::depth_on_grid(sim.particles(), sim.kernel(), grid_);
     try {
-      writer_->write(sim.time(), sim.particles(), depth);
+      // Surface elevation and velocity are not gridded yet: written as no data.
+      const std::vector<double> no_data(depth.size(), std::numeric_limits<double>::quiet_NaN());
+      writer_->write(sim.time(), sim.particles(), {depth, no_data, no_data, no_data});
     } catch (const std::runtime_error& e) {
       throw OutputError(e.what());
     }

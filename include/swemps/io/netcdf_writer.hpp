@@ -1,14 +1,24 @@
 #pragma once
-// CF-1.8 netCDF output of a run: the depth interpolated on a regular grid and, optionally,
-// the particles themselves, one record per output time. The file is written under a
-// temporary name (<path>.partial) and renamed to <path> only by finish(), so a run that
-// crashes never leaves a file that looks complete.
+// CF-1.8 netCDF-4 flood-map output of a run, laid out for GIS and array readers (GDAL,
+// QGIS, xarray, Panoply):
+// - maps per output time on a regular grid (dimension `time`): depth, water-surface
+//   elevation and depth-averaged velocity;
+// - whole-run summary maps, written once (max depth, speed and hazard, arrival time,
+//   inundation duration) and the bed elevation, written once;
+// - time series on their own time axis (`series_time`): depth and velocity at gauges, and
+//   the volume balance of the domain;
+// - optionally the particles themselves, as CF contiguous ragged arrays.
+// With a CRS the grid is georeferenced through a `crs` grid-mapping variable. The file is
+// written under a temporary name (<path>.partial) and renamed to <path> only by finish(),
+// so a run that crashes never leaves a file that looks complete.
 
 #include <cstddef>
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
+#include "swemps/maps/flood_statistics.hpp"
 #include "swemps/particles/swe_particles.hpp"
 
 namespace swemps::io {
@@ -18,6 +28,9 @@ struct Grid {
   double x0 = 0.0, y0 = 0.0;  // m, first cell centre
   double dx = 0.0, dy = 0.0;  // m
   std::size_t nx = 0, ny = 0;
+  // WKT (any version GDAL reads) of the projected CRS that x and y are in, with metres as
+  // its unit; empty for local coordinates in metres without a CRS.
+  std::string crs_wkt;
 };
 
 struct RunMetadata {
@@ -27,37 +40,98 @@ struct RunMetadata {
   double gravity_m_s2 = 9.81;
 };
 
+// A point where depth and velocity are recorded at every series sample.
+struct Gauge {
+  std::string name;         // unique, not empty: the gauge's id in the file
+  double x = 0.0, y = 0.0;  // m, in the grid's coordinates
+};
+
+struct Layout {
+  Grid grid;
+  bool particles = true;      // write the particles at every output time
+  std::vector<Gauge> gauges;  // may be empty: then the file has no gauge variables
+};
+
+// Gridded fields of one output time: ny * nx values each, row-major with x fastest (index
+// k * nx + i, rows by ascending y). NaN means no data and is stored as the fill value.
+struct MapFields {
+  std::span<const double> depth;              // m
+  std::span<const double> surface_elevation;  // m, bed + depth
+  std::span<const double> u, v;               // m/s, depth-averaged velocity along x and y
+};
+
+// One gauge at one series time; NaN where there is no value (dry, or outside the water).
+struct GaugeSample {
+  double depth_m = 0.0;
+  double u_m_s = 0.0, v_m_s = 0.0;
+};
+
+// Volume balance at one series time.
+struct BalanceSample {
+  double in_domain_m3 = 0.0;  // water in the domain now
+  double inflow_m3 = 0.0;     // cumulative since the start
+  double outflow_m3 = 0.0;    // cumulative since the start
+  // (in_domain - (initial + inflow - outflow)) / reference volume, computed by the caller.
+  double relative_error = 0.0;
+};
+
+namespace detail {
+// Dimension and variable ids of an open file; -1 where absent.
+struct NetcdfIds {
+  int y_dim = -1, x_dim = -1;
+  int time = -1, depth = -1, surface = -1, u = -1, v = -1;
+  int count = -1, px = -1, py = -1, pu = -1, pv = -1, ph = -1, pvol = -1, parea = -1;
+  int series_time = -1, gauge_depth = -1, gauge_u = -1, gauge_v = -1;
+  int in_domain = -1, inflow = -1, outflow = -1, error = -1;
+};
+}  // namespace detail
+
 class NetcdfWriter {
  public:
   // Creates <path>.partial (netCDF-4), defines dimensions and variables. Throws
-  // std::runtime_error naming the file and netCDF's message if it cannot.
-  NetcdfWriter(std::filesystem::path path, const Grid& grid, const RunMetadata& meta,
-               bool write_particles);
+  // std::invalid_argument for an empty grid, a CRS that is not projected in metres, or
+  // gauges with empty or repeated names or non-finite positions; std::runtime_error naming
+  // the file and netCDF's message if the file cannot be written.
+  NetcdfWriter(std::filesystem::path path, const Layout& layout, const RunMetadata& meta);
   ~NetcdfWriter();  // closes the file if still open; leaves .partial in place
   NetcdfWriter(const NetcdfWriter&) = delete;
   NetcdfWriter& operator=(const NetcdfWriter&) = delete;
 
-  // Appends one output time. `grid_depth` holds ny * nx values, row-major with x fastest
-  // (index k * nx + i). Only the fluid particles of `p` are written.
-  void write(double time_s, const particles::SweParticles& p, std::span<const double> grid_depth);
+  // Appends one output time of the maps and, if enabled, the fluid particles of `p`.
+  void write(double time_s, const particles::SweParticles& p, const MapFields& fields);
 
-  // Closes the file and renames <path>.partial to <path>.
+  // Appends one series time: one sample per gauge, in the order given at construction.
+  void write_series(double time_s, std::span<const GaugeSample> gauges,
+                    const BalanceSample& balance);
+
+  // The bed elevation (m, ny * nx values laid out as in MapFields); at most once.
+  void write_bed(std::span<const double> bed_m);
+
+  // The whole-run summary maps; at most once, before finish(). The statistics must cover
+  // the grid's cells.
+  void write_summary(const maps::FloodStatistics& stats);
+
+  // Closes the file and renames <path>.partial to <path>. Variables written once that
+  // were never written are absent from the file rather than full of fill values.
   void finish();
 
   const std::filesystem::path& path() const { return path_; }
   std::size_t records() const { return records_; }
+  std::size_t series_records() const { return series_records_; }
 
  private:
+  void require_open(const char* caller) const;
+  void require_grid_sized(std::span<const double> field, const char* caller,
+                          const char* name) const;
+
   std::filesystem::path path_, partial_path_;
   int ncid_ = -1;
-  bool write_particles_;
+  Layout layout_;
   std::size_t records_ = 0;
+  std::size_t series_records_ = 0;
   std::size_t particle_samples_ = 0;
-  Grid grid_;
-  // variable ids
-  int time_var_ = -1, depth_var_ = -1, count_var_ = -1;
-  int px_var_ = -1, py_var_ = -1, pu_var_ = -1, pv_var_ = -1, ph_var_ = -1, pvol_var_ = -1,
-      parea_var_ = -1;
+  bool bed_written_ = false, summary_written_ = false;
+  detail::NetcdfIds ids_;
 };
 
 }  // namespace swemps::io

@@ -1,0 +1,47 @@
+#pragma once
+// Rasters in: any grid GDAL can open (GeoTIFF, ESRI ASCII grid, netCDF, ...) becomes a
+// terrain::GriddedField in a projected CRS in metres, the only coordinates the solver knows.
+// Rasters in longitude/latitude are warped (bilinear) to the scene's CRS here, once, so that
+// nothing downstream ever meets degrees.
+
+#include <filesystem>
+#include <string>
+
+#include "swemps/terrain/gridded_field.hpp"
+
+namespace swemps::io {
+
+struct RasterRequest {
+  std::filesystem::path path;  // a file, or a GDAL dataset name such as NETCDF:"f.nc":z
+  // The scene's CRS: empty, or anything OGRSpatialReference::SetFromUserInput accepts without
+  // reading files or the network ("EPSG:32616", WKT, a PROJ string). Must be projected, in
+  // metres.
+  std::string target_crs;
+  std::string purpose = "raster";       // what the raster is for ("bed raster"), in messages
+  std::string crs_setting = "bed.crs";  // the scene key that sets target_crs, in messages
+  int band = 1;                         // 1-based, as in GDAL
+};
+
+// Reads one band into a north-up GriddedField named after the request's purpose:
+//  - a projected CRS in metres is used as it is, or warped when target_crs names another;
+//  - a geographic CRS (longitude/latitude) is warped to target_crs on GDAL's suggested grid
+//    (square cells, bilinear); cells outside the source's footprint become nodata. Without a
+//    target_crs this is an error that names the scene key and suggests a UTM zone;
+//  - no CRS at all is taken as local metres, allowed only when target_crs is empty;
+//  - a projected CRS in other units (feet, ...) and a rotated or sheared raster are errors;
+//  - a south-up (or east-to-west) raster is flipped to north-up;
+//  - the band's nodata value and any non-finite value become NaN.
+// The field's crs_wkt() is WKT2 (ISO 19162:2019), which GDAL and PROJ read back; it is empty
+// for local metres. Throws std::runtime_error, one line naming the purpose, the file and the
+// problem.
+terrain::GriddedField read_raster(const RasterRequest& request);
+
+// Writes a field as a single-band, deflate-compressed Float64 GeoTIFF with NaN as nodata (for
+// fixtures and tools). Throws std::runtime_error naming the file if it cannot.
+void write_geotiff(const terrain::GriddedField& field, const std::filesystem::path& path);
+
+// The WGS 84 / UTM zone holding a point, as "EPSG:326zz" (north) or "EPSG:327zz" (south):
+// standard 6-degree zones, without the Norway and Svalbard exceptions.
+std::string utm_crs_for(double longitude_deg, double latitude_deg);
+
+}  // namespace swemps::io

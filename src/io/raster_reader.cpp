@@ -1,0 +1,334 @@
+#include "swemps/io/raster_reader.hpp"
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <cpl_string.h>
+#include <gdal_priv.h>
+#include <gdal_utils.h>
+#include <ogr_spatialref.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <numbers>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace swemps::io {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+void register_drivers() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+// While alive, GDAL keeps its error messages to itself (on this thread); they are read back
+// with gdal_detail() and folded into our exceptions instead of being printed.
+class QuietGdalErrors {
+ public:
+  QuietGdalErrors() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdalErrors() { CPLPopErrorHandler(); }
+  QuietGdalErrors(const QuietGdalErrors&) = delete;
+  QuietGdalErrors& operator=(const QuietGdalErrors&) = delete;
+};
+
+std::string gdal_detail() {
+  const char* message = CPLGetLastErrorMsg();
+  return message && *message ? std::string(" (GDAL: ") + message + ")" : std::string();
+}
+
+// GDAL's utilities take their options as a command line; this owns one.
+class ArgumentList {
+ public:
+  ArgumentList& add(const std::string& argument) {
+    list_ = CSLAddString(list_, argument.c_str());
+    return *this;
+  }
+  char** get() const { return list_; }
+  ~ArgumentList() { CSLDestroy(list_); }
+  ArgumentList() = default;
+  ArgumentList(const ArgumentList&) = delete;
+  ArgumentList& operator=(const ArgumentList&) = delete;
+
+ private:
+  char** list_ = nullptr;
+};
+
+class RasterError {
+ public:
+  explicit RasterError(const RasterRequest& request)
+      : prefix_(request.purpose + " '" + request.path.string() + "': ") {}
+  [[noreturn]] void operator()(const std::string& problem) const {
+    throw std::runtime_error(prefix_ + problem);
+  }
+
+ private:
+  std::string prefix_;
+};
+
+std::string to_wkt2(const OGRSpatialReference& crs) {
+  char* text = nullptr;
+  const char* const options[] = {"FORMAT=WKT2_2019", nullptr};
+  const OGRErr status = crs.exportToWkt(&text, options);
+  std::string wkt = status == OGRERR_NONE && text ? text : "";
+  CPLFree(text);
+  return wkt;
+}
+
+bool in_metres(const OGRSpatialReference& crs) {
+  return std::abs(crs.GetLinearUnits() - 1.0) < 1e-12;
+}
+
+std::string linear_unit_name(const OGRSpatialReference& crs) {
+  const char* name = nullptr;
+  crs.GetLinearUnits(&name);
+  return name ? name : "unknown units";
+}
+
+// The UTM zone of a geographic raster's centre, for the message that asks for a target CRS.
+std::string suggested_crs(GDALDataset& dataset, const OGRSpatialReference& geographic,
+                          const std::array<double, 6>& gt) {
+  const double x = gt[0] + 0.5 * gt[1] * dataset.GetRasterXSize();
+  const double y = gt[3] + 0.5 * gt[5] * dataset.GetRasterYSize();
+  // GDAL puts longitude on the raster's x axis; the angular unit may not be the degree.
+  const double to_degrees = geographic.GetAngularUnits() * 180.0 / std::numbers::pi;
+  return utm_crs_for(x * to_degrees, y * to_degrees);
+}
+
+// One band of a dataset, as stored, turned north-up, with nodata as NaN.
+terrain::GriddedField read_band(GDALDataset& dataset, int band_index, std::string crs_wkt,
+                                const RasterRequest& request) {
+  const RasterError fail(request);
+  std::array<double, 6> gt{};
+  if (dataset.GetGeoTransform(gt.data()) != CE_None) {
+    fail("has no georeferencing (no geotransform)");
+  }
+  if (gt[2] != 0.0 || gt[4] != 0.0) {
+    fail("is rotated or sheared (geotransform terms " + std::to_string(gt[2]) + ", " +
+         std::to_string(gt[4]) + "); warp it to a north-up grid first");
+  }
+  if (gt[1] == 0.0 || gt[5] == 0.0 || !std::isfinite(gt[1]) || !std::isfinite(gt[5])) {
+    fail("has a zero or non-finite cell size");
+  }
+  const auto columns = static_cast<std::size_t>(dataset.GetRasterXSize());
+  const auto rows = static_cast<std::size_t>(dataset.GetRasterYSize());
+  GDALRasterBand* band = dataset.GetRasterBand(band_index);
+  std::vector<double> stored(columns * rows);
+  if (band->RasterIO(GF_Read, 0, 0, static_cast<int>(columns), static_cast<int>(rows),
+                     stored.data(), static_cast<int>(columns), static_cast<int>(rows), GDT_Float64,
+                     0, 0, nullptr) != CE_None) {
+    fail("cannot read band " + std::to_string(band_index) + gdal_detail());
+  }
+  int has_nodata = 0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+  // A Float32 band's nodata may be written with fewer digits than the stored value has;
+  // compare as the band stores it.
+  const bool single_precision = band->GetRasterDataType() == GDT_Float32;
+  auto is_nodata = [&](double v) {
+    if (!std::isfinite(v)) return true;
+    if (!has_nodata) return false;
+    return single_precision ? static_cast<float>(v) == static_cast<float>(nodata) : v == nodata;
+  };
+
+  // Rows run north to south and columns west to east in the field, whatever the file does.
+  const bool south_up = gt[5] > 0.0;
+  const bool east_to_west = gt[1] < 0.0;
+  terrain::GridGeometry geometry;
+  geometry.columns = columns;
+  geometry.rows = rows;
+  geometry.cell_width = std::abs(gt[1]);
+  geometry.cell_height = std::abs(gt[5]);
+  geometry.x_left = east_to_west ? gt[0] + gt[1] * static_cast<double>(columns) : gt[0];
+  geometry.y_top = south_up ? gt[3] + gt[5] * static_cast<double>(rows) : gt[3];
+  std::vector<double> values(columns * rows);
+  for (std::size_t row = 0; row < rows; ++row) {
+    const std::size_t stored_row = south_up ? rows - 1 - row : row;
+    for (std::size_t col = 0; col < columns; ++col) {
+      const std::size_t stored_col = east_to_west ? columns - 1 - col : col;
+      const double v = stored[stored_row * columns + stored_col];
+      values[row * columns + col] = is_nodata(v) ? kNaN : v;
+    }
+  }
+  return terrain::GriddedField(geometry, std::move(values), std::move(crs_wkt), request.purpose);
+}
+
+// Warps one band to `target` on GDAL's suggested grid (square cells, bilinear), into memory.
+// Cells whose centre falls outside the source's footprint, or on its nodata, become NaN.
+GDALDatasetUniquePtr warp_band(GDALDataset& source, int band_index,
+                               const OGRSpatialReference& target, const RasterRequest& request) {
+  const RasterError fail(request);
+  const std::string target_description = request.crs_setting + " = \"" + request.target_crs + "\"";
+  // The warper of this GDAL generation takes no band choice, so the band goes alone into a
+  // virtual dataset first.
+  GDALDatasetUniquePtr single_band;
+  GDALDataset* input = &source;
+  if (source.GetRasterCount() > 1) {
+    ArgumentList arguments;
+    arguments.add("-of").add("VRT").add("-b").add(std::to_string(band_index));
+    GDALTranslateOptions* options = GDALTranslateOptionsNew(arguments.get(), nullptr);
+    single_band.reset(GDALDataset::FromHandle(
+        GDALTranslate("", GDALDataset::ToHandle(&source), options, nullptr)));
+    GDALTranslateOptionsFree(options);
+    if (!single_band) fail("cannot select band " + std::to_string(band_index) + gdal_detail());
+    input = single_band.get();
+  }
+
+  ArgumentList arguments;
+  arguments.add("-of").add("MEM").add("-t_srs").add(to_wkt2(target));
+  arguments.add("-r").add("bilinear").add("-ot").add("Float64");
+  // GDAL's default approximation of the transform may misplace values by 1/8 of a source
+  // cell; 1/100 keeps that well below the interpolation's own error at little cost.
+  arguments.add("-et").add("0.01");
+  // NaN marks the cells the source cannot fill; without it they would read as 0 m.
+  arguments.add("-dstnodata").add("nan");
+  GDALRasterBand* band = input->GetRasterBand(1);
+  int has_nodata = 0;
+  band->GetNoDataValue(&has_nodata);
+  const GDALDataType type = band->GetRasterDataType();
+  if (!has_nodata && (type == GDT_Float32 || type == GDT_Float64)) {
+    // NaN in a float source without a declared nodata is still a hole, not a number to blend.
+    arguments.add("-srcnodata").add("nan");
+  }
+  GDALWarpAppOptions* options = GDALWarpAppOptionsNew(arguments.get(), nullptr);
+  if (!options) fail("cannot set up the warp to " + target_description + gdal_detail());
+  GDALDatasetH input_handle = GDALDataset::ToHandle(input);
+  GDALDatasetUniquePtr warped(
+      GDALDataset::FromHandle(GDALWarp("", nullptr, 1, &input_handle, options, nullptr)));
+  GDALWarpAppOptionsFree(options);
+  if (!warped) fail("cannot be warped to " + target_description + gdal_detail());
+  return warped;
+}
+
+}  // namespace
+
+std::string utm_crs_for(double longitude_deg, double latitude_deg) {
+  // Longitudes may come as 0..360; zone 1 starts at 180 W.
+  double lon = std::fmod(longitude_deg + 180.0, 360.0);
+  if (lon < 0.0) lon += 360.0;
+  const int zone = std::min(60, static_cast<int>(std::floor(lon / 6.0)) + 1);
+  return "EPSG:" + std::to_string((latitude_deg >= 0.0 ? 32600 : 32700) + zone);
+}
+
+terrain::GriddedField read_raster(const RasterRequest& request) {
+  register_drivers();
+  const QuietGdalErrors quiet;
+  const RasterError fail(request);
+
+  GDALDatasetUniquePtr dataset(
+      GDALDataset::Open(request.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
+  if (!dataset) {
+    // A name GDAL cannot open may still be a dataset name rather than a file, so the file
+    // check comes only after GDAL has had its try.
+    std::error_code ignored;
+    if (!std::filesystem::exists(request.path, ignored)) fail("file not found");
+    fail("is not a raster GDAL can read" + gdal_detail());
+  }
+  const int band_count = dataset->GetRasterCount();
+  if (band_count == 0) {
+    fail(
+        "holds no raster band (a file with several variables needs the variable named, e.g. "
+        "NETCDF:\"file.nc\":elevation)");
+  }
+  if (request.band < 1 || request.band > band_count) {
+    fail("has no band " + std::to_string(request.band) + " (it has " + std::to_string(band_count) +
+         ")");
+  }
+  std::array<double, 6> gt{};
+  if (dataset->GetGeoTransform(gt.data()) != CE_None) {
+    fail("has no georeferencing (no geotransform)");
+  }
+
+  OGRSpatialReference target;
+  target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  const bool has_target = !request.target_crs.empty();
+  if (has_target) {
+    const std::string setting = request.crs_setting + " = \"" + request.target_crs + "\"";
+    // A scene file must not make the reader fetch URLs or open other files.
+    if (target.SetFromUserInput(request.target_crs.c_str(),
+                                OGRSpatialReference::SET_FROM_USER_INPUT_LIMITATIONS_get()) !=
+        OGRERR_NONE) {
+      fail(setting + " is not a CRS GDAL understands" + gdal_detail());
+    }
+    if (!target.IsProjected() || !in_metres(target)) {
+      fail(setting + " must be a projected CRS in metres (a UTM zone such as \"EPSG:32616\")");
+    }
+  }
+
+  const OGRSpatialReference* source_crs = dataset->GetSpatialRef();
+  if (!source_crs || source_crs->IsEmpty()) {
+    if (has_target) {
+      fail("has no CRS, so it cannot be placed in " + request.crs_setting + " = \"" +
+           request.target_crs + "\"; give the file a CRS, or remove " + request.crs_setting +
+           " to take its coordinates as metres");
+    }
+    return read_band(*dataset, request.band, "", request);
+  }
+  if (source_crs->IsGeographic()) {
+    if (!has_target) {
+      const std::string suggestion = suggested_crs(*dataset, *source_crs, gt);
+      fail("is in longitude/latitude; set " + request.crs_setting +
+           " to a projected CRS in metres to warp it to, e.g. \"" + suggestion +
+           "\" (the UTM zone of the raster's centre)");
+    }
+  } else if (source_crs->IsProjected()) {
+    if (!in_metres(*source_crs)) {
+      fail("is in " + linear_unit_name(*source_crs) +
+           "; the solver works in metres, so reproject it to a CRS in metres first");
+    }
+    if (!has_target || source_crs->IsSame(&target)) {
+      return read_band(*dataset, request.band, to_wkt2(*source_crs), request);
+    }
+  } else {
+    fail("has a CRS that is neither projected nor geographic");
+  }
+  auto warped = warp_band(*dataset, request.band, target, request);
+  return read_band(*warped, 1, to_wkt2(target), request);
+}
+
+void write_geotiff(const terrain::GriddedField& field, const std::filesystem::path& path) {
+  register_drivers();
+  const QuietGdalErrors quiet;
+  auto fail = [&](const std::string& problem) {
+    throw std::runtime_error("GeoTIFF '" + path.string() + "': " + problem + gdal_detail());
+  };
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+  if (!driver) fail("the GeoTIFF driver is missing");
+  const auto& g = field.geometry();
+  ArgumentList creation;
+  // Floating-point prediction before deflate shrinks smooth terrain well.
+  creation.add("COMPRESS=DEFLATE").add("PREDICTOR=3");
+  GDALDatasetUniquePtr dataset(driver->Create(path.c_str(), static_cast<int>(g.columns),
+                                              static_cast<int>(g.rows), 1, GDT_Float64,
+                                              creation.get()));
+  if (!dataset) fail("cannot be created");
+  auto gt = g.geotransform();
+  if (dataset->SetGeoTransform(gt.data()) != CE_None) fail("cannot store the geotransform");
+  if (!field.crs_wkt().empty()) {
+    OGRSpatialReference crs;
+    if (crs.importFromWkt(field.crs_wkt().c_str()) != OGRERR_NONE) fail("the CRS is not WKT");
+    if (dataset->SetSpatialRef(&crs) != CE_None) fail("cannot store the CRS");
+  }
+  GDALRasterBand* band = dataset->GetRasterBand(1);
+  band->SetNoDataValue(kNaN);
+  if (!field.name().empty()) band->SetDescription(field.name().c_str());
+  auto values = field.values();
+  if (band->RasterIO(GF_Write, 0, 0, static_cast<int>(g.columns), static_cast<int>(g.rows),
+                     values.data(), static_cast<int>(g.columns), static_cast<int>(g.rows),
+                     GDT_Float64, 0, 0, nullptr) != CE_None) {
+    fail("cannot write the values");
+  }
+  CPLErrorReset();
+  dataset.reset();  // closing writes the file
+  if (CPLGetLastErrorType() >= CE_Failure) fail("cannot be completed");
+}
+
+}  // namespace swemps::io
