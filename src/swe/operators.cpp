@@ -136,25 +136,83 @@ TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, doubl
   return limit;
 }
 
+namespace {
+
+// Sums eq 7 and the particles' momentum at points, over the fluid particles found through a
+// cell list built once for all points.
+class PointSampler {
+ public:
+  PointSampler(const SweParticles& p, const Kernel& w) : p_(p), w_(w) {
+    const std::size_t n = p.fluid_count();
+    cells_.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
+                 w.support());
+  }
+  // Returns h, and (sum V u w, sum V v w) in qx, qy.
+  double sum(double x, double y, double& qx, double& qy) const {
+    const double support = w_.support();
+    double h = 0.0;
+    qx = 0.0;
+    qy = 0.0;
+    cells_.for_each_candidate({x, y}, [&](std::uint32_t j) {
+      const double r = distance(p_.x[j] - x, p_.y[j] - y);
+      if (r < support) {
+        const double vw = p_.volume[j] * w_.w(r);
+        h += vw;
+        qx += vw * p_.u[j];
+        qy += vw * p_.v[j];
+      }
+    });
+    return h;
+  }
+  PointFields at(double x, double y) const {
+    double qx = 0.0, qy = 0.0;
+    const double h = sum(x, y, qx, qy);
+    if (!(h > 0.0)) return {h, kNoValue, kNoValue};
+    return {h, qx / h, qy / h};
+  }
+
+  static constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
+
+ private:
+  const SweParticles& p_;
+  const Kernel& w_;
+  neighbors::CellList<2> cells_;
+};
+
+}  // namespace
+
 std::vector<double> depth_on_grid(const SweParticles& p, const Kernel& w, const RegularGrid& grid) {
   std::vector<double> depth(grid.nx * grid.ny, 0.0);
-  const std::size_t n = p.fluid_count();
-  if (n == 0) return depth;
-  neighbors::CellList<2> cells;
-  cells.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
-              w.support());
-  const double support = w.support();
+  if (p.fluid_count() == 0) return depth;
+  const PointSampler sampler(p, w);
   parallel_for(grid.nx * grid.ny, [&](std::size_t cell) {
-    const double gx = grid.x0 + static_cast<double>(cell % grid.nx) * grid.dx;
-    const double gy = grid.y0 + static_cast<double>(cell / grid.nx) * grid.dy;
-    double h = 0.0;
-    cells.for_each_candidate({gx, gy}, [&](std::uint32_t j) {
-      const double r = distance(p.x[j] - gx, p.y[j] - gy);
-      if (r < support) h += p.volume[j] * w.w(r);
-    });
-    depth[cell] = h;
+    double qx = 0.0, qy = 0.0;
+    depth[cell] = sampler.sum(grid.x0 + static_cast<double>(cell % grid.nx) * grid.dx,
+                              grid.y0 + static_cast<double>(cell / grid.nx) * grid.dy, qx, qy);
   });
   return depth;
+}
+
+PointFields fields_at(const SweParticles& p, const Kernel& w, double x_m, double y_m) {
+  if (p.fluid_count() == 0) return {0.0, PointSampler::kNoValue, PointSampler::kNoValue};
+  return PointSampler(p, w).at(x_m, y_m);
+}
+
+GridFields fields_on_grid(const SweParticles& p, const Kernel& w, const RegularGrid& grid) {
+  const std::size_t cells = grid.nx * grid.ny;
+  GridFields fields{std::vector<double>(cells, 0.0),
+                    std::vector<double>(cells, PointSampler::kNoValue),
+                    std::vector<double>(cells, PointSampler::kNoValue)};
+  if (p.fluid_count() == 0) return fields;
+  const PointSampler sampler(p, w);
+  parallel_for(cells, [&](std::size_t cell) {
+    const auto f = sampler.at(grid.x0 + static_cast<double>(cell % grid.nx) * grid.dx,
+                              grid.y0 + static_cast<double>(cell / grid.nx) * grid.dy);
+    fields.depth[cell] = f.depth_m;
+    fields.u[cell] = f.u_m_s;
+    fields.v[cell] = f.v_m_s;
+  });
+  return fields;
 }
 
 }  // namespace swemps::swe

@@ -1,6 +1,7 @@
 #include "swemps/swe/simulation.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace swemps::swe {
@@ -35,9 +36,12 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
       walls_(std::move(walls)),
       effects_(std::move(effects)),
       effect_seconds_(effects_.size(), 0.0),
-      // Before the first summation the areas are the lattice areas A_0.
-      kernel_(influence_radius(particles_, settings.alpha_e)) {
-  if (particles_.fluid_count() == 0) throw std::invalid_argument("simulation: no water particles");
+      // Before the first summation the areas are the lattice areas A_0. A run that starts dry
+      // (all its water comes through an inflow) has no radius yet; 1 m stands in, unused.
+      kernel_(particles_.fluid_count() > 0 ? influence_radius(particles_, settings.alpha_e)
+                                           : 1.0) {
+  if (particles_.fluid_count() == 0 && effects_.empty())
+    throw std::invalid_argument("simulation: no water particles and nothing to add any");
   if (particles_.ghost_count() != 0)
     throw std::invalid_argument("simulation: ghosts in the initial state");
   ledger_.initial_m3 = particles_.total_fluid_volume();
@@ -61,8 +65,49 @@ void Simulation::refresh() {
   fresh_ = true;
 }
 
+VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth_m,
+                                                double tolerance_m, int max_iterations) {
+  const std::size_t n = particles_.fluid_count();
+  if (target_depth_m.size() != n) {
+    throw std::invalid_argument("balance_volumes: one target depth per fluid particle needed");
+  }
+  for (const double d : target_depth_m) {
+    if (!(d > 0.0) || !std::isfinite(d))
+      throw std::invalid_argument("balance_volumes: target depths must be finite and > 0");
+  }
+  VolumeBalanceReport report;
+  report.volume_before_m3 = particles_.total_fluid_volume();
+  std::vector<double> permuted(n);
+  for (report.iterations = 1; report.iterations <= max_iterations; ++report.iterations) {
+    update_fields();
+    // update_fields() sorted the particles: carry the targets along.
+    for (std::size_t k = 0; k < n; ++k) permuted[k] = target_depth_m[order_[k]];
+    target_depth_m.swap(permuted);
+    report.max_depth_error_m = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      report.max_depth_error_m =
+          std::max(report.max_depth_error_m, std::abs(particles_.depth[i] - target_depth_m[i]));
+    }
+    if (report.max_depth_error_m <= tolerance_m) break;
+    // h is linear in the volumes for a fixed radius, and every weight is positive, so this
+    // multiplicative update keeps volumes positive and converges where a balanced state
+    // exists. The area is set to what it will be at balance, so that eq 9 takes its radius
+    // from the balanced areas in the next pass.
+    for (std::size_t i = 0; i < n; ++i) {
+      particles_.volume[i] *= target_depth_m[i] / particles_.depth[i];
+      particles_.area[i] = particles_.volume[i] / target_depth_m[i];
+    }
+  }
+  report.iterations = std::min(report.iterations, max_iterations);
+  fresh_ = false;
+  ledger_.initial_m3 = particles_.total_fluid_volume();
+  report.volume_after_m3 = ledger_.initial_m3;
+  return report;
+}
+
 void Simulation::update_fields() {
   particles_.drop_ghosts();
+  if (particles_.fluid_count() == 0) return;  // dry so far: nothing to sum
   // eq 9 with the areas of the previous summation: the radius must be known before the
   // neighbours (and so the new areas) can be found.
   kernel_ = Kernel(influence_radius(particles_, settings_.alpha_e));
@@ -91,8 +136,15 @@ void Simulation::update_fields() {
 
 double Simulation::stable_time_step() {
   refresh();
-  const TimeStepLimit limit =
-      swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
+  TimeStepLimit limit = swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
+  const double effects_limit = effects_time_step_limit();
+  if (effects_limit < limit.dt_s) {
+    limit.dt_s = effects_limit;
+  } else if (particles_.fluid_count() == 0) {
+    throw SimulationError("no water is left and no effect adds any at t = " +
+                          std::to_string(time_s_) + " s");
+  }
+  if (particles_.fluid_count() == 0) return limit.dt_s;  // dry: only the effects limit the step
   if (!(limit.dt_s >= settings_.min_time_step_s) || !std::isfinite(limit.dt_s)) {
     const std::size_t i = limit.particle;
     std::ostringstream msg;
@@ -106,9 +158,21 @@ double Simulation::stable_time_step() {
   return limit.dt_s;
 }
 
+double Simulation::effects_time_step_limit() const {
+  double limit = std::numeric_limits<double>::infinity();
+  for (const auto& effect : effects_) {
+    limit = std::min(limit, effect->time_step_limit(settings_, time_s_));
+  }
+  return limit;
+}
+
 void Simulation::run_effects(Stage stage, double dt_s) {
   StepContext context{particles_, neighbor_list_, kernel_, accel_x_, accel_y_,
                       settings_,  ledger_,        time_s_, dt_s};
+  if (stage == Stage::topology) {
+    context.previous_x = old_x_;
+    context.previous_y = old_y_;
+  }
   for (std::size_t k = 0; k < effects_.size(); ++k) {
     if (effects_[k]->stage() != stage) continue;
     ScopedTimer timer(effect_seconds_[k]);
@@ -161,8 +225,10 @@ void Simulation::advance(double dt_s) {
 }
 
 double Simulation::relative_volume_change() const {
-  const double expected = ledger_.expected_m3();
-  return (fluid_volume() - expected) / ledger_.initial_m3;
+  // Relative to all the water the run has had, so a run that starts dry has a reference too.
+  const double reference = ledger_.initial_m3 + ledger_.added_m3;
+  if (reference == 0.0) return 0.0;
+  return (fluid_volume() - ledger_.expected_m3()) / reference;
 }
 
 std::vector<EffectTime> Simulation::effect_times() const {

@@ -4,6 +4,7 @@
 // the effects its scene asked for and calls each at its stage of the step; the step loop
 // itself never asks whether an effect is enabled, so an absent effect costs nothing.
 
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -41,6 +42,10 @@ struct StepContext {
   VolumeLedger& ledger;
   double time_s;  // at the start of the step
   double dt_s;    // 0 in the resolution stage (the step is not yet chosen)
+  // Fluid positions before this step's move, indexed like the particles as the topology
+  // stage begins (empty in other stages). An effect that removes particles invalidates them
+  // for the effects after it, so effects that read them come first in the topology stage.
+  std::span<const double> previous_x = {}, previous_y = {};
 };
 
 class Effect {
@@ -49,6 +54,11 @@ class Effect {
   virtual std::string_view name() const = 0;
   virtual Stage stage() const = 0;
   virtual void apply(StepContext& context) = 0;
+  // The longest step this effect allows at time_s (s): an inflow limits the step by eq 13
+  // applied to the water it is about to let in, which matters most while the domain is dry.
+  virtual double time_step_limit(const Settings& /*settings*/, double /*time_s*/) const {
+    return std::numeric_limits<double>::infinity();
+  }
   // One line for the closing summary (what the effect did over the run); empty for none.
   virtual std::string report() const { return {}; }
 };

@@ -61,4 +61,19 @@ struct RegularGrid {
 std::vector<double> depth_on_grid(const particles::SweParticles& p, const Kernel& w,
                                   const RegularGrid& grid);
 
+// Depth and depth-averaged velocity at a point: h from the summation above, and
+// u = sum_j V_j u_j w / sum_j V_j w, the discharge of the summation divided by its depth, so
+// that h u carries the particles' momentum. u and v are NaN where h = 0 (no particle in reach).
+struct PointFields {
+  double depth_m = 0.0, u_m_s = 0.0, v_m_s = 0.0;
+};
+PointFields fields_at(const particles::SweParticles& p, const Kernel& w, double x_m, double y_m);
+
+// The same at every cell centre of a grid; ny * nx values each, x fastest.
+struct GridFields {
+  std::vector<double> depth, u, v;
+};
+GridFields fields_on_grid(const particles::SweParticles& p, const Kernel& w,
+                          const RegularGrid& grid);
+
 }  // namespace swemps::swe

@@ -47,6 +47,13 @@ struct PhaseTimes {  // wall-clock seconds spent in each part of the step
   double sort = 0.0, neighbors = 0.0, depth = 0.0, gradient = 0.0, integrate = 0.0, walls = 0.0;
 };
 
+// What Simulation::balance_volumes() did.
+struct VolumeBalanceReport {
+  int iterations = 0;
+  double max_depth_error_m = 0.0;  // max |h_i - target_i| after the last iteration
+  double volume_before_m3 = 0.0, volume_after_m3 = 0.0;
+};
+
 struct EffectTime {
   std::string name;
   double seconds = 0.0;
@@ -60,6 +67,14 @@ class Simulation {
 
   // Brings neighbour list, ghosts, depth and area up to date for the current positions.
   void refresh();
+  // Lake at rest (docs/method.md, "Water at rest over a bed"): rescales the fluid volumes so
+  // that the eq 7 depth at each particle equals target_depth_m[i] (indexed like particles()
+  // before the call), iterating V_i <- V_i d_i / h_i together with eq 9's radius until
+  // max |h_i - d_i| <= tolerance_m. The water surface h + z_b is then level at every particle
+  // and eq 6 gives exactly no force. Resets the ledger's initial volume. Call before the first
+  // step.
+  VolumeBalanceReport balance_volumes(std::vector<double> target_depth_m, double tolerance_m,
+                                      int max_iterations);
   // eq 13 on current fields; throws SimulationError if the step is below the floor or a
   // value is non-finite.
   double stable_time_step();
@@ -88,7 +103,7 @@ class Simulation {
   const Settings& settings() const { return settings_; }
   const VolumeLedger& ledger() const { return ledger_; }
   double fluid_volume() const { return particles_.total_fluid_volume(); }
-  // (V - expected) / V_initial: zero up to round-off when volume is conserved.
+  // (V - expected) / (V_initial + V_added): zero up to round-off when volume is conserved.
   double relative_volume_change() const;
   std::size_t wall_reflections() const { return wall_reflections_; }
   const PhaseTimes& phase_times() const { return phase_times_; }
@@ -97,6 +112,7 @@ class Simulation {
  private:
   void update_fields();  // refresh() without the resolution stage
   void sort_by_cell();
+  double effects_time_step_limit() const;
   void run_effects(Stage stage, double dt_s);
 
   particles::SweParticles particles_;
