@@ -1,11 +1,20 @@
 #include "swemps/scenario/build.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
+#include <sstream>
+#include <stdexcept>
 #include <variant>
 
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
+#include "swemps/boundaries/hydrograph.hpp"
+#include "swemps/boundaries/inflow_line.hpp"
+#include "swemps/boundaries/outflow_line.hpp"
+#include "swemps/io/hydrograph_csv.hpp"
+#include "swemps/io/raster_reader.hpp"
 #include "swemps/particles/seeding.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/bed_slope.hpp"
@@ -15,18 +24,263 @@ namespace swemps::scenario {
 
 namespace {
 
-particles::SweParticles seed_water(const std::vector<WaterBody>& water) {
-  particles::SweParticles p;
-  for (const auto& body : water) {
-    const auto lattice = particles::fill_polygon(body.polygon, body.spacing_m);
-    // Each particle carries the water of its lattice cell: the scene's volume exactly.
-    const double volume = body.depth_m * lattice.cell_area_m2;
-    for (const auto& point : lattice.points) {
-      p.add_fluid(point[0], point[1], body.velocity_m_s[0], body.velocity_m_s[1], volume,
-                  body.depth_m, lattice.cell_area_m2, 0.0);
+using Field = terrain::GriddedField;
+using FieldPtr = std::shared_ptr<const Field>;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+std::string fmt_point(double x, double y) { return "(" + fmt(x) + ", " + fmt(y) + ")"; }
+
+std::string describe_box(const Rectangle& r) {
+  return "[" + fmt(r.x_min) + ", " + fmt(r.x_max) + "] x [" + fmt(r.y_min) + ", " + fmt(r.y_max) +
+         "]";
+}
+
+std::string index_path(const std::string& array, std::size_t i) {
+  return array + "/" + std::to_string(i);
+}
+
+// Relative slack for comparing map coordinates: coordinates in the millions (projected maps)
+// must not fail a comparison by a rounding error; at least 1e-9 m elsewhere.
+double slack_for(const Rectangle& r) {
+  return 1e-9 * std::max({1.0, std::abs(r.x_min), std::abs(r.x_max), std::abs(r.y_min),
+                          std::abs(r.y_max)});
+}
+
+Rectangle extent(const Field& field) {
+  const auto& g = field.geometry();
+  return {g.x_left, g.x_right(), g.y_bottom(), g.y_top};
+}
+
+bool lies_on(const Rectangle& inner, const Rectangle& outer) {
+  const double slack = slack_for(outer);
+  return inner.x_min >= outer.x_min - slack && inner.x_max <= outer.x_max + slack &&
+         inner.y_min >= outer.y_min - slack && inner.y_max <= outer.y_max + slack;
+}
+
+std::vector<Point> corners(const Rectangle& r) {
+  return {{r.x_min, r.y_min}, {r.x_max, r.y_min}, {r.x_max, r.y_max}, {r.x_min, r.y_max}};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Rasters
+
+// The scene's CRS as the rasters are read one after another: the first raster with a raster
+// bed or a "crs" key settles it, and every later raster is warped to it.
+class SceneCrs {
+ public:
+  // The request for a raster named at `json_path`: `own_crs` is the raster's "crs" key
+  // (empty when none), `setting` the name of that key in messages.
+  io::RasterRequest request(const RasterSpec& spec, const std::string& purpose,
+                            const std::string& setting) const {
+    io::RasterRequest r;
+    r.path = spec.path;
+    r.purpose = purpose;
+    if (!spec.crs.empty()) {
+      r.target_crs = spec.crs;
+      r.crs_setting = setting;
+    } else {
+      r.target_crs = target_;
+      r.crs_setting = target_setting_.empty() ? setting : target_setting_;
+    }
+    return r;
+  }
+
+  // Reads the raster; reader errors become scenario errors at `json_path`. A raster without
+  // a CRS in a scene that has one (or the reverse) could lie anywhere relative to the others.
+  Field read(const RasterSpec& spec, const std::string& purpose, const std::string& setting,
+             const std::string& json_path) {
+    const io::RasterRequest r = request(spec, purpose, setting);
+    try {
+      Field field = io::read_raster(r);
+      if (known_ && field.crs_wkt().empty() != wkt_.empty()) {
+        throw ScenarioError(json_path,
+                            purpose + " '" + spec.path.string() +
+                                (wkt_.empty() ? "' with a CRS in a scene whose rasters have none"
+                                              : "' without a CRS in a scene that has one"),
+                            "every raster with a CRS, or none with one");
+      }
+      if (!known_) {
+        known_ = true;
+        wkt_ = field.crs_wkt();
+        // Later rasters follow the CRS as given (shorter in messages), else the file's own.
+        target_ = spec.crs.empty() ? wkt_ : spec.crs;
+        target_setting_ = spec.crs.empty() ? "the CRS of " + json_path : setting;
+      }
+      return field;
+    } catch (const ScenarioError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw ScenarioError(json_path, e.what(),
+                          "a raster GDAL can read, in a projected CRS in metres (or with a "
+                          "\"crs\" to warp it to)");
     }
   }
-  return p;
+
+  const std::string& wkt() const { return wkt_; }
+
+ private:
+  bool known_ = false;
+  std::string wkt_, target_, target_setting_;
+};
+
+// A raster the solver samples everywhere in the domain must cover it without gaps.
+void check_covers(const Field& field, const Rectangle& domain, const std::string& json_path,
+                  const std::string& what) {
+  if (!lies_on(domain, extent(field))) {
+    throw ScenarioError(json_path,
+                        what + " covering " + describe_box(extent(field)) +
+                            ", which does not hold the domain " + describe_box(domain),
+                        "a raster covering the whole domain");
+  }
+  const auto nodata = field.nodata_in(domain.x_min, domain.x_max, domain.y_min, domain.y_max);
+  if (nodata.count > 0) {
+    throw ScenarioError(json_path,
+                        what + " with " + std::to_string(nodata.count) +
+                            " nodata cells inside the domain, the first centred at " +
+                            fmt_point(nodata.x_m, nodata.y_m),
+                        "no nodata inside the domain: shrink the domain to avoid them, or fill "
+                        "the raster's gaps");
+  }
+}
+
+// Manning's n must be > 0 wherever the interpolation may reach from inside the domain: the
+// cells centred within one cell of it.
+void check_positive(const Field& field, const Rectangle& domain, const std::string& json_path) {
+  const auto& g = field.geometry();
+  for (std::size_t row = 0; row < g.rows; ++row) {
+    const double y = g.cell_centre_y(row);
+    if (y < domain.y_min - g.cell_height || y > domain.y_max + g.cell_height) continue;
+    for (std::size_t col = 0; col < g.columns; ++col) {
+      const double x = g.cell_centre_x(col);
+      if (x < domain.x_min - g.cell_width || x > domain.x_max + g.cell_width) continue;
+      const double n = field.at(col, row);
+      if (std::isnan(n) || n > 0.0) continue;
+      throw ScenarioError(json_path,
+                          "Manning's n = " + fmt(n) + " in the cell centred at " + fmt_point(x, y),
+                          "values > 0 (s m^-1/3) over the domain");
+    }
+  }
+}
+
+// The domain a raster bed settles: the one given, which must lie on the raster, or the
+// raster's extent. Either way free of nodata.
+Rectangle settle_domain(const Scenario& scene, const Field& bed) {
+  const Rectangle domain = scene.domain_from_bed ? extent(bed) : scene.domain;
+  const std::string path = scene.domain_from_bed ? "/bed/raster" : "/domain";
+  if (!scene.domain_from_bed && !lies_on(domain, extent(bed))) {
+    throw ScenarioError(path,
+                        describe_box(domain) + ", reaching beyond the bed raster's extent " +
+                            describe_box(extent(bed)),
+                        "a domain lying on the bed raster (or no \"domain\": the raster's extent)");
+  }
+  const auto nodata = bed.nodata_in(domain.x_min, domain.x_max, domain.y_min, domain.y_max);
+  if (nodata.count > 0) {
+    throw ScenarioError(path,
+                        std::to_string(nodata.count) +
+                            " nodata cells of the bed raster inside the domain, the first centred "
+                            "at " +
+                            fmt_point(nodata.x_m, nodata.y_m),
+                        "a domain without bed nodata: shrink the domain to avoid them, or fill "
+                        "the raster's gaps");
+  }
+  return domain;
+}
+
+// The bed as a source of z_b, or none when the scene names no bed (flat at z = 0).
+std::shared_ptr<const swe::BedSource> analytic_bed(const BedSpec& spec) {
+  if (const auto* plane = std::get_if<PlaneBedSpec>(&spec)) {
+    return std::make_shared<swe::PlaneBed>(plane->elevation_m, plane->slope, plane->origin_m);
+  }
+  if (const auto* profile = std::get_if<ProfileBedSpec>(&spec)) {
+    return std::make_shared<swe::ProfileBed>(profile->points);
+  }
+  return nullptr;
+}
+
+// Manning's n from a raster, sampled where each particle stands.
+class RasterRoughness final : public swe::RoughnessSource {
+ public:
+  explicit RasterRoughness(FieldPtr field) : field_(std::move(field)) {}
+  double manning_n(double x_m, double y_m) const override { return field_->sample(x_m, y_m); }
+
+ private:
+  FieldPtr field_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Particles
+
+struct Seeded {
+  particles::SweParticles particles;
+  std::vector<double> target_depth_m;  // the depth each particle starts with, by index
+  StartingVolumes volumes;
+};
+
+// Where (x, y) the body is this deep, or NaN (or no more than min_depth): dry.
+double starting_depth(const WaterBody& body, const Field* depth_raster,
+                      const swe::BedSource* bed, double x, double y, double z_b) {
+  if (const auto* uniform = std::get_if<UniformDepth>(&body.depth)) return uniform->depth_m;
+  if (const auto* level = std::get_if<LevelSurface>(&body.depth)) {
+    return bed ? level->surface_elevation_m - z_b : std::numeric_limits<double>::quiet_NaN();
+  }
+  // Beyond the raster's edges it holds its edge values; water there is not the raster's.
+  if (!depth_raster->covers(x, y)) return std::numeric_limits<double>::quiet_NaN();
+  return depth_raster->sample(x, y);
+}
+
+std::string no_water_message(const WaterBody& body, std::size_t points, double bed_min,
+                             double bed_max) {
+  std::string found = "no lattice point deeper than min_depth = " + fmt(body.min_depth_m) +
+                      " m among the " + std::to_string(points) + " in the shape";
+  if (const auto* level = std::get_if<LevelSurface>(&body.depth)) {
+    found += " (surface_elevation " + fmt(level->surface_elevation_m) + " m, bed " +
+             fmt(bed_min) + " to " + fmt(bed_max) + " m there)";
+    return found;
+  }
+  return found + " (the depth raster is dry or nodata there)";
+}
+
+Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
+  Seeded out;
+  auto& p = out.particles;
+  const swe::BedSource* bed = terrain.bed.get();
+  for (std::size_t i = 0; i < scene.water.size(); ++i) {
+    const WaterBody& body = scene.water[i];
+    const auto polygon = body.polygon.empty() ? corners(terrain.domain) : body.polygon;
+    const auto lattice = particles::fill_polygon(polygon, body.spacing_m);
+    const bool uniform = std::holds_alternative<UniformDepth>(body.depth);
+    out.volumes.from_terrain = out.volumes.from_terrain || !uniform;
+    double bed_min = std::numeric_limits<double>::infinity(), bed_max = -bed_min;
+    std::size_t added = 0;
+    for (const auto& point : lattice.points) {
+      const double z_b = bed ? bed->elevation(point[0], point[1]) : 0.0;
+      bed_min = std::min(bed_min, z_b);
+      bed_max = std::max(bed_max, z_b);
+      const double h = starting_depth(body, terrain.water_depth[i].get(), bed, point[0],
+                                      point[1], z_b);
+      // NaN fails the test too: dry.
+      if (!uniform && !(h > body.min_depth_m)) continue;
+      // Each particle carries the water of its lattice cell: the scene's volume exactly.
+      p.add_fluid(point[0], point[1], body.velocity_m_s[0], body.velocity_m_s[1],
+                  h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b);
+      out.target_depth_m.push_back(h);
+      out.volumes.geometric_m3 += h * lattice.cell_area_m2;
+      ++added;
+    }
+    if (!uniform && added == 0) {
+      throw ScenarioError(index_path("/water", i),
+                          no_water_message(body, lattice.points.size(), bed_min, bed_max),
+                          "water deeper than min_depth somewhere in the shape (raise the "
+                          "surface, lower min_depth or refine the spacing)");
+    }
+  }
+  return out;
 }
 
 boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
@@ -42,20 +296,109 @@ boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
   return boundaries::GhostWalls(std::move(segments));
 }
 
-// The bed as a source of z_b, or none when the scene names no bed (flat at z = 0).
-std::shared_ptr<const swe::BedSource> make_bed(const BedSpec& spec) {
-  if (const auto* plane = std::get_if<PlaneBedSpec>(&spec)) {
-    return std::make_shared<swe::PlaneBed>(plane->elevation_m, plane->slope, plane->origin_m);
+// ---------------------------------------------------------------------------------------------
+// Inflow and outflow
+
+// The unit normal of the line on the side of the domain's centre.
+std::array<double, 2> towards_centre(const Inflow& in, const Rectangle& domain,
+                                     const std::string& path) {
+  const auto& [a, b] = in.line;
+  const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
+  std::array<double, 2> normal{-(b[1] - a[1]) / length, (b[0] - a[0]) / length};
+  const double to_x = 0.5 * (domain.x_min + domain.x_max) - 0.5 * (a[0] + b[0]);
+  const double to_y = 0.5 * (domain.y_min + domain.y_max) - 0.5 * (a[1] + b[1]);
+  const double side = normal[0] * to_x + normal[1] * to_y;
+  if (std::abs(side) <= slack_for(domain)) {
+    throw ScenarioError(path, "a line whose extension runs through the domain's centre",
+                        "a \"direction\" saying which way the water enters");
   }
-  if (const auto* profile = std::get_if<ProfileBedSpec>(&spec)) {
-    return std::make_shared<swe::ProfileBed>(profile->points);
+  if (side < 0.0) normal = {-normal[0], -normal[1]};
+  return normal;
+}
+
+std::unique_ptr<swe::Effect> make_inflow(const Inflow& in, std::size_t index,
+                                         const Terrain& terrain) {
+  const std::string path = index_path("/inflow", index);
+  std::vector<std::array<double, 2>> points;
+  if (const auto* table = std::get_if<std::vector<std::array<double, 2>>>(&in.hydrograph)) {
+    points = *table;
+  } else {
+    try {
+      points = io::read_hydrograph_csv(std::get<std::filesystem::path>(in.hydrograph));
+    } catch (const std::runtime_error& e) {
+      throw ScenarioError(path + "/hydrograph_csv", e.what(),
+                          "a CSV file of time (s) and discharge (m^3/s) columns");
+    }
   }
-  return nullptr;
+  boundaries::InflowLineSettings settings;
+  settings.name = in.name;
+  settings.from = in.line[0];
+  settings.to = in.line[1];
+  settings.direction =
+      in.direction ? *in.direction : towards_centre(in, terrain.domain, path + "/line");
+  settings.spacing_m = in.spacing_m;
+  settings.depth_m = in.depth_m;
+  settings.bed = terrain.bed;
+  try {
+    return std::make_unique<boundaries::InflowLine>(std::move(settings),
+                                                    boundaries::Hydrograph(std::move(points)));
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError(path, e.what(), "an inflow line the boundary accepts");
+  }
+}
+
+std::unique_ptr<swe::Effect> make_outflow(const std::vector<Outflow>& outflows) {
+  std::vector<boundaries::Polyline> lines;
+  for (const auto& outflow : outflows) lines.push_back(outflow.line);
+  try {
+    return std::make_unique<boundaries::OutflowLines>(std::move(lines));
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError("/outflow", e.what(), "outflow lines the boundary accepts");
+  }
 }
 
 }  // namespace
 
-swe::Simulation make_simulation(const Scenario& scene) {
+Terrain read_terrain(const Scenario& scene) {
+  Terrain terrain;
+  terrain.domain = scene.domain;
+  SceneCrs crs;
+  if (const auto* spec = std::get_if<RasterBedSpec>(&scene.bed)) {
+    auto field = std::make_shared<const Field>(
+        crs.read(spec->raster, "bed raster", "bed.crs", "/bed/raster"));
+    terrain.domain = settle_domain(scene, *field);
+    terrain.bed_raster = field;
+    terrain.bed = std::make_shared<terrain::RasterBed>(field);
+  } else {
+    terrain.bed = analytic_bed(scene.bed);
+  }
+  if (scene.domain_from_bed) check_within_domain(scene, terrain.domain);
+
+  if (scene.manning_n) {
+    if (const auto* spec = std::get_if<RasterSpec>(&*scene.manning_n)) {
+      const std::string path = "/friction/manning_n_raster";
+      auto field =
+          std::make_shared<const Field>(crs.read(*spec, "Manning's n raster", "friction.crs", path));
+      check_covers(*field, terrain.domain, path, "a Manning's n raster");
+      check_positive(*field, terrain.domain, path);
+      terrain.roughness = field;
+    }
+  }
+  terrain.water_depth.resize(scene.water.size());
+  for (std::size_t i = 0; i < scene.water.size(); ++i) {
+    if (const auto* depth = std::get_if<DepthRaster>(&scene.water[i].depth)) {
+      const std::string path = index_path("/water", i);
+      terrain.water_depth[i] = std::make_shared<const Field>(
+          crs.read(depth->raster, "water depth raster", "water[" + std::to_string(i) + "].crs",
+                   path + "/depth_raster"));
+    }
+  }
+  terrain.crs_wkt = crs.wkt();
+  return terrain;
+}
+
+BuiltScene build(const Scenario& scene) {
+  Terrain terrain = read_terrain(scene);
   auto walls = make_walls(scene.walls);
   // Effects in the order they act within their stage.
   std::vector<std::unique_ptr<swe::Effect>> effects;
@@ -64,39 +407,98 @@ swe::Simulation make_simulation(const Scenario& scene) {
         *scene.splitting,
         std::vector<boundaries::WallSegment>(walls.segments().begin(), walls.segments().end())));
   }
-  const auto bed = make_bed(scene.bed);
   // A level bed exerts no force: its elevation is set once on the particles (and inherited
   // by daughters), and no effect runs.
   const auto* plane = std::get_if<PlaneBedSpec>(&scene.bed);
   const bool level = plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0;
-  if (bed && !level)
-    effects.push_back(std::make_unique<swe::BedSlope>(bed, scene.numerics.gradient));
-  if (scene.manning_n) {
-    effects.push_back(std::make_unique<swe::ManningFriction>(*scene.manning_n));
+  if (terrain.bed && !level) {
+    effects.push_back(std::make_unique<swe::BedSlope>(terrain.bed, scene.numerics.gradient));
   }
-  const auto& d = scene.domain;
+  if (terrain.roughness) {
+    effects.push_back(std::make_unique<swe::ManningFriction>(
+        std::make_shared<const RasterRoughness>(terrain.roughness)));
+  } else if (scene.manning_n) {
+    effects.push_back(std::make_unique<swe::ManningFriction>(std::get<double>(*scene.manning_n)));
+  }
+  // Outflow lines read the positions before the move, which an effect removing particles
+  // would shift: they come first in the topology stage. Inflows only add particles, so they
+  // may follow; new rows are tested by the lines from the next step on, when they have a path.
+  if (!scene.outflows.empty()) effects.push_back(make_outflow(scene.outflows));
+  for (std::size_t i = 0; i < scene.inflows.size(); ++i) {
+    effects.push_back(make_inflow(scene.inflows[i], i, terrain));
+  }
+  const auto& d = terrain.domain;
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
-  auto particles = seed_water(scene.water);
-  // The initial particles stand on the bed too (written with the first output).
-  if (bed) {
-    for (std::size_t i = 0; i < particles.fluid_count(); ++i) {
-      particles.bed[i] = bed->elevation(particles.x[i], particles.y[i]);
-    }
+
+  Seeded seeded = seed_water(scene, terrain);
+  swe::Simulation sim(std::move(seeded.particles), scene.numerics, std::move(walls),
+                      std::move(effects));
+  const bool balanced = std::any_of(scene.water.begin(), scene.water.end(), [](const auto& w) {
+    return w.volumes == VolumeRule::balanced;
+  });
+  if (balanced && !seeded.target_depth_m.empty()) {
+    const double deepest =
+        *std::max_element(seeded.target_depth_m.begin(), seeded.target_depth_m.end());
+    // Round-off in the depth sums is about 1e-16 of the depth; 1e-10 leaves room for the
+    // iteration to stop well before that and is still far below any physical depth.
+    seeded.volumes.balance_tolerance_m = std::max(1e-12, 1e-10 * deepest);
+    // Convergence is linear, at a rate set by how far the lattice is from balanced; a few
+    // hundred passes cover the steep shores of real terrain.
+    constexpr int kMaxBalanceIterations = 400;
+    seeded.volumes.balance = sim.balance_volumes(
+        std::move(seeded.target_depth_m), seeded.volumes.balance_tolerance_m,
+        kMaxBalanceIterations);
   }
-  return swe::Simulation(std::move(particles), scene.numerics, std::move(walls),
-                         std::move(effects));
+  return BuiltScene{std::move(terrain), std::move(sim), seeded.volumes};
 }
 
-swe::RegularGrid output_grid(const Scenario& scene) {
+swe::Simulation make_simulation(const Scenario& scene) {
+  return std::move(build(scene).simulation);
+}
+
+swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain) {
   const auto& g = scene.output.grid;
-  const double width = g.bounds.x_max - g.bounds.x_min;
-  const double height = g.bounds.y_max - g.bounds.y_min;
-  const auto nx = static_cast<std::size_t>(std::max(1.0, std::round(width / g.spacing_m)));
-  const auto ny = static_cast<std::size_t>(std::max(1.0, std::round(height / g.spacing_m)));
-  const double dx = width / static_cast<double>(nx);
-  const double dy = height / static_cast<double>(ny);
-  return {g.bounds.x_min + 0.5 * dx, g.bounds.y_min + 0.5 * dy, dx, dy, nx, ny};
+  const Rectangle bounds = g.bounds.value_or(terrain.domain);
+  if (g.spacing_m || !terrain.bed_raster) {
+    const double spacing = g.spacing_m.value_or(bounds.x_max - bounds.x_min);
+    const double width = bounds.x_max - bounds.x_min;
+    const double height = bounds.y_max - bounds.y_min;
+    const auto nx = static_cast<std::size_t>(std::max(1.0, std::round(width / spacing)));
+    const auto ny = static_cast<std::size_t>(std::max(1.0, std::round(height / spacing)));
+    const double dx = width / static_cast<double>(nx);
+    const double dy = height / static_cast<double>(ny);
+    return {bounds.x_min + 0.5 * dx, bounds.y_min + 0.5 * dy, dx, dy, nx, ny};
+  }
+  // The bed raster's own cells, so that the maps line up with the DEM cell for cell. A cell
+  // counts when it lies whole inside the bounds; 1e-9 of a cell forgives bounds that were
+  // written out with rounding.
+  const auto& geo = terrain.bed_raster->geometry();
+  constexpr double kForgive = 1e-9;
+  const auto clamp_index = [](double index, std::size_t count) {
+    return static_cast<std::size_t>(std::clamp(index, 0.0, static_cast<double>(count)));
+  };
+  const std::size_t col_begin = clamp_index(
+      std::ceil((bounds.x_min - geo.x_left) / geo.cell_width - kForgive), geo.columns);
+  const std::size_t col_end = clamp_index(
+      std::floor((bounds.x_max - geo.x_left) / geo.cell_width + kForgive), geo.columns);
+  const std::size_t row_begin = clamp_index(
+      std::ceil((geo.y_top - bounds.y_max) / geo.cell_height - kForgive), geo.rows);
+  const std::size_t row_end = clamp_index(
+      std::floor((geo.y_top - bounds.y_min) / geo.cell_height + kForgive), geo.rows);
+  if (col_end <= col_begin || row_end <= row_begin) {
+    throw ScenarioError(g.bounds ? "/output/grid" : "/domain",
+                        "bounds " + describe_box(bounds) + " holding no whole bed raster cell (" +
+                            fmt(geo.cell_width) + " m x " + fmt(geo.cell_height) + " m)",
+                        "bounds holding at least one bed raster cell, or a grid \"spacing\"");
+  }
+  // Rows of the output grid run south to north: the first is the raster's southernmost.
+  return {geo.cell_centre_x(col_begin),
+          geo.cell_centre_y(row_end - 1),
+          geo.cell_width,
+          geo.cell_height,
+          col_end - col_begin,
+          row_end - row_begin};
 }
 
 }  // namespace swemps::scenario

@@ -10,8 +10,11 @@
 #include <fstream>
 #include <functional>
 #include <iomanip>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -47,10 +50,9 @@ const std::string kMissing = "nothing (key missing)";
 const std::string kMetres = "metres";
 const std::string kSeconds = "seconds";
 
-// An interval-generated output list longer than this is surely a typo in "interval".
+// An interval-generated output list (or series) longer than this is surely a typo.
 constexpr double kMaxOutputTimes = 1e6;
-// Each written grid field of this many cells takes gigabytes; a finer grid is surely a typo,
-// better reported here than by the allocator.
+// Each written grid field of this many cells takes gigabytes.
 constexpr double kMaxGridCells = 1e9;
 
 // ---------------------------------------------------------------------------------------------
@@ -426,10 +428,16 @@ std::vector<Point> corners(const Rectangle& r) {
   return {{r.x_min, r.y_min}, {r.x_max, r.y_min}, {r.x_max, r.y_max}, {r.x_min, r.y_max}};
 }
 
-// Water must start inside the domain: particles outside it would be removed at once.
-// `vertex_paths` points errors at the offending polygon vertex rather than at the whole shape.
+std::string describe_box(const Rectangle& r) {
+  return "[" + fmt(r.x_min) + ", " + fmt(r.x_max) + "] x [" + fmt(r.y_min) + ", " + fmt(r.y_max) +
+         "]";
+}
+
+// Points must lie inside the domain: water outside it would be removed at once, and an inflow
+// line or gauge outside it would see no water. `vertex_paths` points errors at the offending
+// vertex rather than at the whole shape; `what` names the thing ("water lying").
 void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const std::string& path,
-                  bool vertex_paths) {
+                  bool vertex_paths, const std::string& what = "water lying") {
   // Relative slack, so that coordinates in the millions (projected maps) are not failed by
   // a rounding error, and at least 1e-9 m elsewhere.
   const double scale = std::max({1.0, std::abs(domain.x_min), std::abs(domain.x_max),
@@ -440,11 +448,12 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
     const bool inside = p[0] >= domain.x_min - slack && p[0] <= domain.x_max + slack &&
                         p[1] >= domain.y_min - slack && p[1] <= domain.y_max + slack;
     if (inside) continue;
+    const std::string which =
+        vertex_paths || poly.size() == 1 ? "" : " (vertex " + std::to_string(i) + ")";
     throw ScenarioError(vertex_paths ? element_path(path, i) : path,
-                        "the point " + fmt(p) + " outside the domain [" + fmt(domain.x_min) + ", " +
-                            fmt(domain.x_max) + "] x [" + fmt(domain.y_min) + ", " +
-                            fmt(domain.y_max) + "]",
-                        "water lying inside the domain");
+                        "the point " + fmt(p) + which + " outside the domain " +
+                            describe_box(domain),
+                        what + " inside the domain");
   }
 }
 
@@ -468,55 +477,218 @@ swe::Settings read_numerics(const json* v, double gravity) {
   return s;
 }
 
-WaterBody read_water(const json& v, const std::string& path, const Rectangle& domain) {
-  const Object o(v, path, {"depth", "velocity", "spacing", "rectangle", "polygon"},
-                 "an object describing a body of water");
+// ---------------------------------------------------------------------------------------------
+// Files named by the scene
+
+// A file the scene names, resolved against the scenario's folder. A GDAL dataset name that
+// wraps a file, DRIVER:"file"[:rest] such as NETCDF:"dem.nc":elevation, has its file resolved
+// and the rest kept. The driver name needs two letters or more, so a drive letter is no driver.
+std::filesystem::path resolve_file(const std::string& text, const std::filesystem::path& base_dir) {
+  const auto resolve = [&](const std::string& name) {
+    std::filesystem::path p(name);
+    if (p.is_relative()) p = base_dir / p;
+    return std::filesystem::absolute(p).lexically_normal();
+  };
+  static const std::regex wrapped(R"re(^([A-Za-z][A-Za-z0-9_]+):"([^"]+)"(.*)$)re");
+  std::smatch m;
+  if (std::regex_match(text, m, wrapped)) {
+    return m[1].str() + ":\"" + resolve(m[2].str()).string() + "\"" + m[3].str();
+  }
+  return resolve(text);
+}
+
+// o[key], a required non-empty string naming a file; `what` says what the file holds.
+std::filesystem::path file_path(const Object& o, std::string_view key, const std::string& what,
+                                const std::filesystem::path& base_dir) {
+  const std::string expected = "a path to " + what + " (relative to the scenario's folder)";
+  const json* v = o.find(key);
+  if (v == nullptr) throw ScenarioError(o.path(key), kMissing, expected);
+  if (!v->is_string() || v->get_ref<const std::string&>().empty()) {
+    throw ScenarioError(o.path(key), describe(*v), expected);
+  }
+  return resolve_file(v->get<std::string>(), base_dir);
+}
+
+// o["crs"], the CRS a raster is warped to; empty when not given. Whether GDAL knows it is
+// found out when the raster is read.
+std::string crs_text(const Object& o) {
+  const std::string expected = "a projected CRS in metres, such as \"EPSG:32616\"";
+  const auto crs = optional_string(o, "crs", expected);
+  if (crs && crs->empty()) throw ScenarioError(o.path("crs"), describe(*o.find("crs")), expected);
+  return crs.value_or("");
+}
+
+double non_negative(const Object& o, std::string_view key, const std::string& unit,
+                    double fallback) {
+  const std::string expected = "a number >= 0 (" + unit + ")";
+  const double x = number(o, key, expected, fallback);
+  if (!(x >= 0.0)) throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
+  return x;
+}
+
+// "both "a" and "b"" or "all of "a", "b" and "c"", for keys that exclude each other.
+std::string several(const std::vector<std::string_view>& keys) {
+  if (keys.size() == 2) return "both " + literal(keys[0]) + " and " + literal(keys[1]);
+  std::string out = "all of ";
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (i > 0) out += i + 1 == keys.size() ? " and " : ", ";
+    out += literal(keys[i]);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Water
+
+struct ParsedWater {
+  WaterBody body;
+  bool volumes_given = false;
+};
+
+// The shape in `o`: exactly one of "rectangle" or "polygon", or neither when `optional`.
+// Checked against the domain when the domain is known.
+std::optional<std::vector<Point>> read_shape(const Object& o, bool optional,
+                                             const std::optional<Rectangle>& domain) {
   const std::string one_shape = "exactly one of \"rectangle\" or \"polygon\"";
   const json* rectangle = o.find("rectangle");
   const json* polygon = o.find("polygon");
   if (rectangle && polygon) {
-    throw ScenarioError(path, "both \"rectangle\" and \"polygon\"", one_shape);
+    throw ScenarioError(o.path(), "both \"rectangle\" and \"polygon\"",
+                        optional ? "at most one of \"rectangle\" or \"polygon\"" : one_shape);
   }
   if (!rectangle && !polygon) {
-    throw ScenarioError(path, "neither \"rectangle\" nor \"polygon\"", one_shape);
+    if (optional) return std::nullopt;
+    throw ScenarioError(o.path(), "neither \"rectangle\" nor \"polygon\"", one_shape);
   }
-
-  WaterBody w;
+  std::vector<Point> poly;
   if (rectangle) {
-    w.polygon = corners(read_box(*rectangle, o.path("rectangle")));
-    check_inside(w.polygon, domain, o.path("rectangle"), false);
+    poly = corners(read_box(*rectangle, o.path("rectangle")));
+    if (domain) check_inside(poly, *domain, o.path("rectangle"), false);
   } else {
-    w.polygon = read_polygon(*polygon, o.path("polygon"));
-    check_inside(w.polygon, domain, o.path("polygon"), true);
+    poly = read_polygon(*polygon, o.path("polygon"));
+    if (domain) check_inside(poly, *domain, o.path("polygon"), true);
   }
-  w.depth_m = positive(o, "depth", kMetres);
+  return poly;
+}
+
+// A key that does not belong to the way this body of water is given.
+void forbid(const Object& o, std::string_view key, std::string_view form,
+            const std::string& belongs) {
+  if (o.find(key) == nullptr) return;
+  throw ScenarioError(o.path(key),
+                      "the key " + literal(key) + " in water given by " + literal(form),
+                      "no " + literal(key) + " here (" + belongs + ")");
+}
+
+ParsedWater read_water(const json& v, const std::string& path,
+                       const std::optional<Rectangle>& domain, bool has_bed,
+                       const std::filesystem::path& base_dir) {
+  const Object o(v, path,
+                 {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth",
+                  "velocity", "spacing", "volumes", "rectangle", "polygon"},
+                 "an object describing a body of water");
+  std::vector<std::string_view> forms;
+  for (std::string_view key : {"depth", "fill", "depth_raster"}) {
+    if (o.find(key) != nullptr) forms.push_back(key);
+  }
+  if (forms.size() > 1) {
+    throw ScenarioError(path, several(forms),
+                        "exactly one of \"depth\", \"fill\" or \"depth_raster\" (how deep the "
+                        "water is)");
+  }
+  // Without any of the three the body is taken as the original form, whose depth is missing.
+  const std::string_view form = forms.empty() ? "depth" : forms.front();
+
+  ParsedWater parsed;
+  WaterBody& w = parsed.body;
+  const std::string with_fill = "it goes with \"fill\"";
+  const std::string with_raster = "it goes with \"depth_raster\"";
+  if (form == "depth") {
+    w.polygon = *read_shape(o, false, domain);
+    w.depth = UniformDepth{positive(o, "depth", kMetres)};
+    forbid(o, "surface_elevation", form, with_fill);
+    forbid(o, "min_depth", form, "it goes with \"fill\" or \"depth_raster\"");
+    forbid(o, "crs", form, with_raster);
+  } else if (form == "fill") {
+    const std::string inside = "with \"fill\" the shape goes inside it";
+    forbid(o, "rectangle", form, inside);
+    forbid(o, "polygon", form, inside);
+    forbid(o, "crs", form, with_raster);
+    if (!has_bed) {
+      throw ScenarioError(o.path("fill"), "\"fill\" in a scene without a \"bed\"",
+                          "a \"bed\" to fill (the depth is surface_elevation minus the bed "
+                          "elevation)");
+    }
+    const Object shape(*o.find("fill"), o.path("fill"), {"rectangle", "polygon"},
+                       "an object with exactly one of \"rectangle\" or \"polygon\"");
+    w.polygon = *read_shape(shape, false, domain);
+    w.depth = LevelSurface{
+        number(o, "surface_elevation", "a number (metres, the level of the water surface)")};
+  } else {
+    forbid(o, "surface_elevation", form, with_fill);
+    w.polygon = read_shape(o, true, domain).value_or(std::vector<Point>{});
+    w.depth = DepthRaster{
+        RasterSpec{file_path(o, "depth_raster", "a raster of water depths (metres)", base_dir),
+                   crs_text(o)}};
+  }
+  if (form != "depth") w.min_depth_m = non_negative(o, "min_depth", kMetres, w.min_depth_m);
   if (const json* velocity = o.find("velocity")) {
     w.velocity_m_s = pair(*velocity, o.path("velocity"), "a [u, v] pair of numbers (m/s)");
   }
 
   // A spacing wider than the shape would fill it with at most one row of particles.
   w.spacing_m = positive(o, "spacing", kMetres);
-  const Rectangle bb = bounding_box(w.polygon);
-  const double width = bb.x_max - bb.x_min, height = bb.y_max - bb.y_min;
-  const double limit = std::min(width, height);
-  if (w.spacing_m > limit * (1.0 + 1e-12)) {
-    throw ScenarioError(
-        o.path("spacing"),
-        describe(*o.find("spacing")) + " for water " + fmt(width) + " m x " + fmt(height) + " m",
-        "a number > 0 and at most " + fmt(limit) +
-            " (the smaller side of the water's bounding box, metres)");
+  if (!w.polygon.empty()) {
+    const Rectangle bb = bounding_box(w.polygon);
+    const double width = bb.x_max - bb.x_min, height = bb.y_max - bb.y_min;
+    const double limit = std::min(width, height);
+    if (w.spacing_m > limit * (1.0 + 1e-12)) {
+      throw ScenarioError(
+          o.path("spacing"),
+          describe(*o.find("spacing")) + " for water " + fmt(width) + " m x " + fmt(height) + " m",
+          "a number > 0 and at most " + fmt(limit) +
+              " (the smaller side of the water's bounding box, metres)");
+    }
   }
-  return w;
+
+  // Water whose depth comes from the terrain starts at rest only when balanced.
+  const std::string_view volumes =
+      choice(o, "volumes", {"geometric", "balanced"}, form == "depth" ? "geometric" : "balanced");
+  w.volumes = volumes == "balanced" ? VolumeRule::balanced : VolumeRule::geometric;
+  parsed.volumes_given = o.find("volumes") != nullptr;
+  return parsed;
 }
 
-std::vector<WaterBody> read_waters(const json* v, const Rectangle& domain) {
+// Missing or empty water is allowed here; parse() requires water or an inflow.
+std::vector<WaterBody> read_waters(const json* v, const std::optional<Rectangle>& domain,
+                                   bool has_bed, const std::filesystem::path& base_dir) {
   const std::string path = "/water";
-  const std::string expected = "a non-empty array of water bodies";
-  if (v == nullptr) throw ScenarioError(path, kMissing, expected);
-  if (!v->is_array() || v->empty()) throw ScenarioError(path, describe(*v), expected);
-  std::vector<WaterBody> out;
+  if (v == nullptr) return {};
+  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of water bodies");
+  std::vector<ParsedWater> parsed;
   for (std::size_t i = 0; i < v->size(); ++i) {
-    out.push_back(read_water((*v)[i], element_path(path, i), domain));
+    parsed.push_back(read_water((*v)[i], element_path(path, i), domain, has_bed, base_dir));
+  }
+  // Balancing solves for all particles at once (their depths are sums over neighbours, across
+  // bodies too), so it is one choice for the whole scene.
+  const auto balanced = std::find_if(parsed.begin(), parsed.end(), [](const ParsedWater& p) {
+    return p.body.volumes == VolumeRule::balanced;
+  });
+  std::vector<WaterBody> out;
+  for (std::size_t i = 0; i < parsed.size(); ++i) {
+    WaterBody& body = parsed[i].body;
+    if (balanced != parsed.end() && body.volumes == VolumeRule::geometric) {
+      if (parsed[i].volumes_given) {
+        const auto other = static_cast<std::size_t>(balanced - parsed.begin());
+        throw ScenarioError(
+            member_path(element_path(path, i), "volumes"),
+            "\"geometric\" while " + element_path(path, other) + " is balanced",
+            "\"balanced\" or no \"volumes\" (balancing solves for all particles together, so "
+            "one balanced body balances them all)");
+      }
+      body.volumes = VolumeRule::balanced;
+    }
+    out.push_back(std::move(body));
   }
   return out;
 }
@@ -548,19 +720,28 @@ std::vector<Wall> read_walls(const json* v) {
   return out;
 }
 
-BedSpec read_bed(const json* v) {
+BedSpec read_bed(const json* v, const std::filesystem::path& base_dir) {
   if (v == nullptr) return {};
   const std::string path = "/bed";
-  const std::string one_kind = "exactly one of \"plane\" or \"profile_x\"";
-  const Object o(*v, path, {"plane", "profile_x"}, "an object with " + one_kind);
-  const json* plane = o.find("plane");
-  const json* profile = o.find("profile_x");
-  if ((plane != nullptr) == (profile != nullptr)) {
-    throw ScenarioError(
-        path, plane ? "both \"plane\" and \"profile_x\"" : "neither \"plane\" nor \"profile_x\"",
-        one_kind);
+  const std::string one_kind = "exactly one of \"plane\", \"profile_x\" or \"raster\"";
+  const Object o(*v, path, {"plane", "profile_x", "raster", "crs"}, "an object with " + one_kind);
+  std::vector<std::string_view> kinds;
+  for (std::string_view key : {"plane", "profile_x", "raster"}) {
+    if (o.find(key) != nullptr) kinds.push_back(key);
   }
-  if (plane) {
+  if (kinds.empty()) {
+    throw ScenarioError(path, "none of \"plane\", \"profile_x\" or \"raster\"", one_kind);
+  }
+  if (kinds.size() > 1) throw ScenarioError(path, several(kinds), one_kind);
+  if (kinds.front() != "raster" && o.find("crs") != nullptr) {
+    throw ScenarioError(o.path("crs"), "a \"crs\" with a " + std::string(kinds.front()) + " bed",
+                        "no \"crs\" here (it goes with a \"raster\" bed)");
+  }
+  if (kinds.front() == "raster") {
+    return RasterBedSpec{RasterSpec{
+        file_path(o, "raster", "a raster of bed elevations (metres)", base_dir), crs_text(o)}};
+  }
+  if (const json* plane = o.find("plane")) {
     const Object po(*plane, o.path("plane"), {"elevation", "slope", "origin"},
                     "an object with elevation, slope and origin");
     PlaneBedSpec spec;
@@ -574,7 +755,7 @@ BedSpec read_bed(const json* v) {
     return spec;
   }
   ProfileBedSpec spec;
-  spec.points = points(*profile, o.path("profile_x"), 2, "x, z");
+  spec.points = points(*o.find("profile_x"), o.path("profile_x"), 2, "x, z");
   for (std::size_t i = 1; i < spec.points.size(); ++i) {
     if (!(spec.points[i][0] > spec.points[i - 1][0])) {
       throw ScenarioError(element_path(o.path("profile_x"), i), "x = " + fmt(spec.points[i][0]),
@@ -585,9 +766,25 @@ BedSpec read_bed(const json* v) {
   return spec;
 }
 
-std::optional<double> read_friction(const json* v) {
+std::optional<ManningSpec> read_friction(const json* v, const std::filesystem::path& base_dir) {
   if (v == nullptr) return std::nullopt;
-  const Object o(*v, "/friction", {"manning_n"}, "an object with \"manning_n\"");
+  const Object o(*v, "/friction", {"manning_n", "manning_n_raster", "crs"},
+                 "an object with \"manning_n\" or \"manning_n_raster\"");
+  const bool uniform = o.find("manning_n") != nullptr;
+  const bool map = o.find("manning_n_raster") != nullptr;
+  if (uniform && map) {
+    throw ScenarioError(o.path(), "both \"manning_n\" and \"manning_n_raster\"",
+                        "exactly one of \"manning_n\" or \"manning_n_raster\"");
+  }
+  if (map) {
+    return RasterSpec{
+        file_path(o, "manning_n_raster", "a raster of Manning's n (s m^-1/3)", base_dir),
+        crs_text(o)};
+  }
+  if (o.find("crs") != nullptr) {
+    throw ScenarioError(o.path("crs"), "a \"crs\" with \"manning_n\"",
+                        "no \"crs\" here (it goes with \"manning_n_raster\")");
+  }
   return positive(o, "manning_n", "s m^-1/3");
 }
 
@@ -613,6 +810,175 @@ std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   s.axis = axis == "major" ? splitting::SplitAxis::major : splitting::SplitAxis::minor;
   return s;
 }
+
+// ---------------------------------------------------------------------------------------------
+// Inflow and outflow
+
+double smallest_spacing(const std::vector<WaterBody>& water) {
+  double s = water.front().spacing_m;
+  for (const WaterBody& w : water) s = std::min(s, w.spacing_m);
+  return s;
+}
+
+std::vector<std::array<double, 2>> read_hydrograph(const json& v, const std::string& path) {
+  const std::string expected = "an array of at least 1 [time, discharge] point (s, m^3/s)";
+  if (!v.is_array() || v.empty()) throw ScenarioError(path, describe(v), expected);
+  std::vector<std::array<double, 2>> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string at = element_path(path, i);
+    const auto point = pair(v[i], at, "a [time, discharge] pair of numbers (s, m^3/s)");
+    if (!out.empty() && !(point[0] > out.back()[0])) {
+      throw ScenarioError(element_path(at, 0), "t = " + fmt(point[0]),
+                          "a time greater than the previous point's " + fmt(out.back()[0]) +
+                              " (times strictly increasing, seconds)");
+    }
+    if (point[1] < 0.0) {
+      throw ScenarioError(element_path(at, 1), fmt(point[1]), "a discharge >= 0 (m^3/s)");
+    }
+    out.push_back(point);
+  }
+  return out;
+}
+
+Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
+                   const std::vector<WaterBody>& water, const std::filesystem::path& base_dir) {
+  const Object o(v, path,
+                 {"name", "line", "hydrograph", "hydrograph_csv", "spacing", "depth", "direction"},
+                 "an object with a \"line\" and a \"hydrograph\" or \"hydrograph_csv\"");
+  Inflow in;
+  in.name = optional_string(o, "name", "a non-empty string")
+                .value_or("inflow " + std::to_string(index));
+  if (in.name.empty()) {
+    throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
+  }
+
+  const std::string line_expected = "an array of exactly 2 [x, y] points (metres)";
+  const json* line = o.find("line");
+  if (line == nullptr) throw ScenarioError(o.path("line"), kMissing, line_expected);
+  if (!line->is_array() || line->size() != 2) {
+    throw ScenarioError(o.path("line"), describe(*line), line_expected);
+  }
+  const std::vector<Point> ends = points(*line, o.path("line"), 2);
+  check_distinct_neighbours(ends, o.path("line"), false);
+  in.line = {ends[0], ends[1]};
+
+  const std::string one_source = "exactly one of \"hydrograph\" or \"hydrograph_csv\"";
+  const json* table = o.find("hydrograph");
+  const json* csv = o.find("hydrograph_csv");
+  if (table && csv) throw ScenarioError(path, "both \"hydrograph\" and \"hydrograph_csv\"", one_source);
+  if (!table && !csv) {
+    throw ScenarioError(path, "neither \"hydrograph\" nor \"hydrograph_csv\"", one_source);
+  }
+  if (table) {
+    in.hydrograph = read_hydrograph(*table, o.path("hydrograph"));
+  } else {
+    in.hydrograph = file_path(o, "hydrograph_csv", "a CSV file of times and discharges", base_dir);
+  }
+
+  // Inflow particles as fine as the finest water keep the particle sizes alike.
+  if (water.empty()) {
+    in.spacing_m = positive(o, "spacing", "metres; required when the scene has no water");
+  } else {
+    in.spacing_m = positive(o, "spacing", kMetres, smallest_spacing(water));
+  }
+  if (o.find("depth") != nullptr) in.depth_m = positive(o, "depth", kMetres);
+
+  if (const json* direction = o.find("direction")) {
+    const auto d = pair(*direction, o.path("direction"), "a [dx, dy] pair of numbers");
+    const double along_x = in.line[1][0] - in.line[0][0];
+    const double along_y = in.line[1][1] - in.line[0][1];
+    const double norm = std::hypot(d[0], d[1]);
+    const double length = std::hypot(along_x, along_y);
+    const std::string normal = "[" + fmt(-along_y / length) + ", " + fmt(along_x / length) + "]";
+    const std::string expected =
+        "a direction normal to the line, such as " + normal + " or its opposite";
+    if (!(norm > 0.0) || !std::isfinite(norm)) {
+      throw ScenarioError(o.path("direction"), "a zero or unbounded vector", expected);
+    }
+    const double cosine = (d[0] * along_x + d[1] * along_y) / (norm * length);
+    if (std::abs(cosine) > 1e-9) {
+      const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+      throw ScenarioError(o.path("direction"),
+                          "[" + fmt(d[0]) + ", " + fmt(d[1]) + "], at " + fmt(degrees) +
+                              " degrees to the line",
+                          expected);
+    }
+    in.direction = d;
+  }
+  return in;
+}
+
+std::vector<Inflow> read_inflows(const json* v, const std::vector<WaterBody>& water,
+                                 const std::filesystem::path& base_dir) {
+  if (v == nullptr) return {};
+  const std::string path = "/inflow";
+  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of inflow lines");
+  std::vector<Inflow> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    Inflow in = read_inflow((*v)[i], element_path(path, i), i, water, base_dir);
+    // Names tell the inflows apart in the run's report.
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if (out[k].name != in.name) continue;
+      throw ScenarioError(member_path(element_path(path, i), "name"),
+                          "the name " + literal(in.name) + " again (inflow " + std::to_string(k) +
+                              " has it)",
+                          "a name no other inflow has");
+    }
+    out.push_back(std::move(in));
+  }
+  return out;
+}
+
+std::vector<Outflow> read_outflows(const json* v) {
+  if (v == nullptr) return {};
+  const std::string path = "/outflow";
+  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of outflow lines");
+  std::vector<Outflow> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const Object o((*v)[i], element_path(path, i), {"line"}, "an object with a \"line\"");
+    const json* line = o.find("line");
+    if (line == nullptr) {
+      throw ScenarioError(o.path("line"), kMissing, "an array of at least 2 [x, y] points (metres)");
+    }
+    Outflow outflow{points(*line, o.path("line"), 2)};
+    check_distinct_neighbours(outflow.line, o.path("line"), false);
+    out.push_back(std::move(outflow));
+  }
+  return out;
+}
+
+// With a raster bed the scene's CRS is the bed's and every other raster is warped to it;
+// without one, the rasters that name a CRS must name the same, for the scene has one CRS.
+void check_crs_keys(const Scenario& s) {
+  std::vector<std::pair<std::string, std::string>> given;  // (JSON path, CRS)
+  if (s.manning_n) {
+    const auto* map = std::get_if<RasterSpec>(&*s.manning_n);
+    if (map && !map->crs.empty()) given.emplace_back("/friction/crs", map->crs);
+  }
+  for (std::size_t i = 0; i < s.water.size(); ++i) {
+    const auto* depth = std::get_if<DepthRaster>(&s.water[i].depth);
+    if (depth && !depth->raster.crs.empty()) {
+      given.emplace_back(member_path(element_path("/water", i), "crs"), depth->raster.crs);
+    }
+  }
+  const bool raster_bed = std::holds_alternative<RasterBedSpec>(s.bed);
+  for (const auto& [path, crs] : given) {
+    if (raster_bed) {
+      throw ScenarioError(path, "a \"crs\" in a scene with a raster bed",
+                          "no \"crs\" here (every raster is warped to the bed's CRS; set that "
+                          "with bed.crs)");
+    }
+    if (crs != given.front().second) {
+      throw ScenarioError(path,
+                          literal(crs) + " while " + given.front().first + " is " +
+                              literal(given.front().second),
+                          "the same CRS for every raster (the scene has one CRS)");
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Output
 
 std::vector<double> listed_times(const json& v, const std::string& path, double end_time) {
   if (!v.is_array()) throw ScenarioError(path, describe(v), "an array of times (seconds)");
@@ -667,9 +1033,22 @@ std::vector<double> read_times(const Object& o, double end_time) {
   return out;
 }
 
-double smallest_spacing(const std::vector<WaterBody>& water) {
-  double s = water.front().spacing_m;
-  for (const WaterBody& w : water) s = std::min(s, w.spacing_m);
+// Each written grid field of more cells than kMaxGridCells takes gigabytes; a finer grid is
+// surely a typo, better reported here than by the allocator.
+void check_grid_cells(double spacing_m, const Rectangle& bounds, const std::string& path) {
+  const double cells = ((bounds.x_max - bounds.x_min) / spacing_m) *
+                       ((bounds.y_max - bounds.y_min) / spacing_m);
+  if (cells > kMaxGridCells) {
+    throw ScenarioError(path, fmt(spacing_m) + ", giving about " + fmt(std::ceil(cells)) + " cells",
+                        "a spacing giving at most " + fmt(kMaxGridCells) + " grid cells (metres)");
+  }
+}
+
+// The finest particle spacing of the scene's water and inflows.
+double finest_spacing(const Scenario& scene) {
+  double s = std::numeric_limits<double>::infinity();
+  for (const WaterBody& w : scene.water) s = std::min(s, w.spacing_m);
+  for (const Inflow& in : scene.inflows) s = std::min(s, in.spacing_m);
   return s;
 }
 
@@ -677,28 +1056,22 @@ GridSpec read_grid(const json* v, const std::string& path, const Scenario& scene
   const Object o(v ? *v : empty_object(), path, {"spacing", "x_min", "x_max", "y_min", "y_max"},
                  "an object");
   GridSpec grid;
-  // Half the particle spacing resolves the particle field without empty cells between them.
-  grid.spacing_m = positive(o, "spacing", kMetres, 0.5 * smallest_spacing(scene.water));
+  // A raster bed brings its own cells; elsewhere half the particle spacing resolves the
+  // particle field without empty cells between them.
+  if (o.find("spacing") != nullptr || !std::holds_alternative<RasterBedSpec>(scene.bed)) {
+    grid.spacing_m = positive(o, "spacing", kMetres, 0.5 * finest_spacing(scene));
+  }
 
   std::vector<std::string_view> present;
   for (std::string_view key : kBoxKeys) {
     if (o.find(key) != nullptr) present.push_back(key);
   }
-  if (present.empty()) {
-    grid.bounds = scene.domain;
-  } else if (present.size() == kBoxKeys.size()) {
+  if (present.size() == kBoxKeys.size()) {
     grid.bounds = box(o);
-  } else {
+    if (grid.spacing_m) check_grid_cells(*grid.spacing_m, *grid.bounds, o.path("spacing"));
+  } else if (!present.empty()) {
     throw ScenarioError(path, "only " + join(present, false),
                         "all four of x_min, x_max, y_min, y_max, or none (the domain)");
-  }
-
-  const double cells = ((grid.bounds.x_max - grid.bounds.x_min) / grid.spacing_m) *
-                       ((grid.bounds.y_max - grid.bounds.y_min) / grid.spacing_m);
-  if (cells > kMaxGridCells) {
-    throw ScenarioError(o.path("spacing"),
-                        fmt(grid.spacing_m) + ", giving about " + fmt(std::ceil(cells)) + " cells",
-                        "a spacing giving at most " + fmt(kMaxGridCells) + " grid cells (metres)");
   }
   return grid;
 }
@@ -717,17 +1090,80 @@ std::filesystem::path read_output_path(const Object& o, const std::string& name,
   return std::filesystem::absolute(p).lexically_normal();
 }
 
+std::vector<Gauge> read_gauges(const json* v, const std::string& path) {
+  if (v == nullptr) return {};
+  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of gauges");
+  std::vector<Gauge> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const Object o((*v)[i], element_path(path, i), {"name", "x", "y"},
+                   "an object with x, y and optionally a name");
+    Gauge g;
+    g.name = optional_string(o, "name", "a non-empty string")
+                 .value_or("gauge " + std::to_string(i));
+    if (g.name.empty()) {
+      throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
+    }
+    // The name is the gauge's id in the output file.
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      if (out[k].name != g.name) continue;
+      throw ScenarioError(o.path("name"),
+                          "the name " + literal(g.name) + " again (gauge " + std::to_string(k) +
+                              " has it)",
+                          "a name no other gauge has");
+    }
+    g.position_m = {number(o, "x", "a number (metres)"), number(o, "y", "a number (metres)")};
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
 Output read_output(const json* v, const Scenario& scene, const std::filesystem::path& base_dir) {
   const std::string path = "/output";
-  const Object o(v ? *v : empty_object(), path, {"path", "times", "interval", "grid", "particles"},
+  const Object o(v ? *v : empty_object(), path,
+                 {"path", "times", "interval", "grid", "particles", "gauges", "series_interval",
+                  "wet_depth"},
                  "an object");
   Output out;
   out.path = read_output_path(o, scene.name, base_dir);
   out.times_s = read_times(o, scene.end_time_s);
   out.grid = read_grid(o.find("grid"), o.path("grid"), scene);
   out.write_particles = optional_bool(o, "particles", true);
+  out.gauges = read_gauges(o.find("gauges"), o.path("gauges"));
+  // 500 samples draw smooth gauge curves and time the flood to a fifth of a percent of the run.
+  out.series_interval_s = positive(o, "series_interval", kSeconds, scene.end_time_s / 500.0);
+  if (scene.end_time_s / out.series_interval_s > kMaxOutputTimes) {
+    throw ScenarioError(o.path("series_interval"),
+                        describe(*o.find("series_interval")) + ", giving " +
+                            fmt(scene.end_time_s / out.series_interval_s) + " samples",
+                        "an interval giving at most " + fmt(kMaxOutputTimes) + " samples (seconds)");
+  }
+  out.wet_depth_m = non_negative(o, "wet_depth", kMetres, out.wet_depth_m);
   return out;
 }
+
+}  // namespace
+
+void check_within_domain(const Scenario& scene, const Rectangle& domain) {
+  for (std::size_t i = 0; i < scene.water.size(); ++i) {
+    const auto& polygon = scene.water[i].polygon;
+    if (!polygon.empty()) check_inside(polygon, domain, element_path("/water", i), false);
+  }
+  for (std::size_t i = 0; i < scene.inflows.size(); ++i) {
+    const auto& line = scene.inflows[i].line;
+    check_inside({line[0], line[1]}, domain, member_path(element_path("/inflow", i), "line"), true,
+                 "an inflow line lying");
+  }
+  for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
+    check_inside({scene.output.gauges[i].position_m}, domain,
+                 element_path("/output/gauges", i), false, "a gauge");
+  }
+  const GridSpec& grid = scene.output.grid;
+  if (grid.spacing_m && !grid.bounds) {
+    check_grid_cells(*grid.spacing_m, domain, "/output/grid/spacing");
+  }
+}
+
+namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Parsing the text
@@ -833,7 +1269,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   const json root = parse_json(text);
   const Object o(root, "",
                  {"name", "description", "gravity", "end_time", "numerics", "domain", "water",
-                  "walls", "bed", "friction", "splitting", "output"},
+                  "walls", "bed", "friction", "splitting", "inflow", "outflow", "output"},
                  "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
@@ -846,16 +1282,36 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   s.end_time_s = positive(o, "end_time", kSeconds);
   s.numerics = read_numerics(o.find("numerics"), gravity);
 
-  const json* domain = o.find("domain");
-  if (domain == nullptr) throw ScenarioError(o.path("domain"), kMissing, kBoxExpected);
-  s.domain = read_box(*domain, o.path("domain"));
+  // The bed comes first: a raster bed may give the domain, and water filled to a level needs
+  // a bed to fill.
+  s.bed = read_bed(o.find("bed"), base_dir);
+  std::optional<Rectangle> domain;
+  if (const json* given = o.find("domain")) {
+    domain = read_box(*given, o.path("domain"));
+    s.domain = *domain;
+  } else if (std::holds_alternative<RasterBedSpec>(s.bed)) {
+    s.domain_from_bed = true;  // checked against the water, inflows and gauges by build
+  } else {
+    throw ScenarioError(o.path("domain"), kMissing,
+                        kBoxExpected + "; only a raster bed, whose extent it then is, lets it be "
+                                       "left out");
+  }
 
-  s.water = read_waters(o.find("water"), s.domain);
+  const bool has_bed = !std::holds_alternative<std::monostate>(s.bed);
+  s.water = read_waters(o.find("water"), domain, has_bed, base_dir);
   s.walls = read_walls(o.find("walls"));
-  s.bed = read_bed(o.find("bed"));
-  s.manning_n = read_friction(o.find("friction"));
+  s.manning_n = read_friction(o.find("friction"), base_dir);
   s.splitting = read_splitting(o.find("splitting"));
+  s.inflows = read_inflows(o.find("inflow"), s.water, base_dir);
+  if (s.water.empty() && s.inflows.empty()) {
+    const json* water = o.find("water");
+    throw ScenarioError(o.path("water"), water ? describe(*water) : kMissing,
+                        "a non-empty array of water bodies, or an \"inflow\" to bring water in");
+  }
+  s.outflows = read_outflows(o.find("outflow"));
+  check_crs_keys(s);
   s.output = read_output(o.find("output"), s, base_dir);
+  if (domain) check_within_domain(s, *domain);
   return s;
 }
 

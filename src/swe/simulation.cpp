@@ -38,8 +38,7 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
       effect_seconds_(effects_.size(), 0.0),
       // Before the first summation the areas are the lattice areas A_0. A run that starts dry
       // (all its water comes through an inflow) has no radius yet; 1 m stands in, unused.
-      kernel_(particles_.fluid_count() > 0 ? influence_radius(particles_, settings.alpha_e)
-                                           : 1.0) {
+      kernel_(particles_.fluid_count() > 0 ? influence_radius(particles_, settings.alpha_e) : 1.0) {
   if (particles_.fluid_count() == 0 && effects_.empty())
     throw std::invalid_argument("simulation: no water particles and nothing to add any");
   if (particles_.ghost_count() != 0)
@@ -67,7 +66,7 @@ void Simulation::refresh() {
 
 VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth_m,
                                                 double tolerance_m, int max_iterations) {
-  const std::size_t n = particles_.fluid_count();
+  std::size_t n = particles_.fluid_count();
   if (target_depth_m.size() != n) {
     throw std::invalid_argument("balance_volumes: one target depth per fluid particle needed");
   }
@@ -93,9 +92,35 @@ VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth
     // multiplicative update keeps volumes positive and converges where a balanced state
     // exists. The area is set to what it will be at balance, so that eq 9 takes its radius
     // from the balanced areas in the next pass.
+    //
+    // Where the water is thinner than what the neighbours' kernels already bring (a shore
+    // particle beside deeper water), no positive volume balances and the iteration drives
+    // the volume towards zero: such a particle is removed once its area falls below
+    // kVanishingArea of its lattice area, and the others are balanced without it.
+    constexpr double kVanishingArea = 0.5;
+    std::vector<std::uint8_t> vanishing(n, 0);
+    std::size_t vanished = 0;
     for (std::size_t i = 0; i < n; ++i) {
       particles_.volume[i] *= target_depth_m[i] / particles_.depth[i];
       particles_.area[i] = particles_.volume[i] / target_depth_m[i];
+      if (particles_.area[i] < kVanishingArea * particles_.initial_area[i]) {
+        vanishing[i] = 1;
+        ++vanished;
+      }
+    }
+    if (vanished > 0) {
+      if (vanished == n)
+        throw std::invalid_argument("balance_volumes: no particle can be balanced");
+      particles_.drop_ghosts();
+      particles_.remove(vanishing);
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!vanishing[i]) target_depth_m[kept++] = target_depth_m[i];
+      }
+      target_depth_m.resize(kept);
+      n = kept;
+      permuted.resize(n);
+      report.removed_particles += vanished;
     }
   }
   report.iterations = std::min(report.iterations, max_iterations);
@@ -141,8 +166,8 @@ double Simulation::stable_time_step() {
   if (effects_limit < limit.dt_s) {
     limit.dt_s = effects_limit;
   } else if (particles_.fluid_count() == 0) {
-    throw SimulationError("no water is left and no effect adds any at t = " +
-                          std::to_string(time_s_) + " s");
+    throw SimulationError(
+        "no water is left and no effect adds any at t = " + std::to_string(time_s_) + " s");
   }
   if (particles_.fluid_count() == 0) return limit.dt_s;  // dry: only the effects limit the step
   if (!(limit.dt_s >= settings_.min_time_step_s) || !std::isfinite(limit.dt_s)) {

@@ -1,13 +1,23 @@
 // End-to-end tests of the swe-mps executable: exit statuses, messages, and that its output
 // opens in the netCDF and GDAL command-line tools.
 
+#include <gdal_priv.h>
+#include <netcdf.h>
+#include <ogr_spatialref.h>
 #include <sys/wait.h>
 
+#include <array>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
+#include <vector>
+
+#include "swemps/io/raster_reader.hpp"
+#include "swemps/terrain/gridded_field.hpp"
 
 namespace fs = std::filesystem;
 
@@ -117,6 +127,152 @@ TEST_CASE("the Ritter case runs end to end and its file opens in ncdump and gdal
     CHECK_THAT(info.output, Catch::Contains("Size is 500, 50"));
   } else {
     WARN("gdalinfo not installed: skipped");
+  }
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// A whole variable of a netCDF file, as doubles.
+std::vector<double> read_variable(const fs::path& file, const std::string& name) {
+  int ncid = -1, varid = -1, ndims = 0;
+  REQUIRE(nc_open(file.c_str(), NC_NOWRITE, &ncid) == NC_NOERR);
+  REQUIRE(nc_inq_varid(ncid, name.c_str(), &varid) == NC_NOERR);
+  REQUIRE(nc_inq_varndims(ncid, varid, &ndims) == NC_NOERR);
+  std::vector<int> dims(static_cast<std::size_t>(ndims));
+  REQUIRE(nc_inq_vardimid(ncid, varid, dims.data()) == NC_NOERR);
+  std::size_t count = 1;
+  for (const int dim : dims) {
+    std::size_t length = 0;
+    REQUIRE(nc_inq_dimlen(ncid, dim, &length) == NC_NOERR);
+    count *= length;
+  }
+  std::vector<double> values(count);
+  REQUIRE(nc_get_var_double(ncid, varid, values.data()) == NC_NOERR);
+  nc_close(ncid);
+  return values;
+}
+
+// A tilted bowl of 40 x 30 cells of 10 m in UTM zone 16N, lowest (300 m) near its middle.
+void write_bowl(const fs::path& path) {
+  swemps::terrain::GridGeometry g;
+  g.columns = 40;
+  g.rows = 30;
+  g.x_left = 500000.0;
+  g.y_top = 4000300.0;
+  g.cell_width = 10.0;
+  g.cell_height = 10.0;
+  std::vector<double> z;
+  for (std::size_t row = 0; row < g.rows; ++row) {
+    for (std::size_t col = 0; col < g.columns; ++col) {
+      const double x = g.cell_centre_x(col), y = g.cell_centre_y(row);
+      const double dx = x - 500200.0, dy = y - 4000150.0;
+      z.push_back(300.0 + 0.002 * (dx * dx + dy * dy) + 0.01 * (x - 500000.0));
+    }
+  }
+  OGRSpatialReference utm;
+  REQUIRE(utm.importFromEPSG(32616) == OGRERR_NONE);
+  char* wkt = nullptr;
+  utm.exportToWkt(&wkt);
+  const std::string crs = wkt;
+  CPLFree(wkt);
+  swemps::io::write_geotiff(swemps::terrain::GriddedField(g, z, crs, "bed elevation"), path);
+}
+
+std::unique_ptr<GDALDataset> open_raster(const std::string& name) {
+  GDALAllRegister();
+  return std::unique_ptr<GDALDataset>(
+      GDALDataset::FromHandle(GDALOpen(name.c_str(), GA_ReadOnly)));
+}
+
+}  // namespace
+
+TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its volume balance",
+          "[cli]") {
+  const auto dir = fresh_dir("raster");
+  write_bowl(dir / "bed.tif");
+  // A lake moving east across an outflow line, and a flood entering from the west edge.
+  std::ofstream(dir / "scenario.json") << R"({
+    "end_time": 20,
+    "bed": {"raster": "bed.tif", "crs": "EPSG:32616"},
+    "water": [{"fill": {"polygon": [[500120, 4000080], [500280, 4000080], [500280, 4000220],
+                                    [500120, 4000220]]},
+               "surface_elevation": 312, "spacing": 10, "velocity": [1, 0]}],
+    "inflow": [{"name": "west", "line": [[500005, 4000130], [500005, 4000170]],
+                "hydrograph": [[0, 0], [5, 3], [20, 3]]}],
+    "outflow": [{"line": [[500240, 4000100], [500240, 4000200]]}],
+    "output": {"path": "lake.nc", "interval": 5, "series_interval": 0.5,
+               "gauges": [{"name": "centre", "x": 500200, "y": 4000150},
+                          {"name": "bank", "x": 500350, "y": 4000050}]}
+  })";
+  const auto out = dir / "lake.nc";
+  const auto r = run(cli + " run " + (dir / "scenario.json").string() + " --threads 2");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("water from terrain: geometric volume"));
+  CHECK_THAT(r.output, Catch::Contains("balanced particle volume"));
+  CHECK_THAT(r.output, Catch::Contains("effect 'outflow lines'"));
+  CHECK_THAT(r.output, Catch::Contains("effect 'west'"));
+  REQUIRE(fs::exists(out));
+
+  SECTION("GDAL reads the DEM's geotransform and CRS back from the maps") {
+    const auto dem = open_raster((dir / "bed.tif").string());
+    const auto maps = open_raster("NETCDF:\"" + out.string() + "\":max_depth");
+    REQUIRE(dem != nullptr);
+    REQUIRE(maps != nullptr);
+    CHECK(maps->GetRasterXSize() == 40);
+    CHECK(maps->GetRasterYSize() == 30);
+    std::array<double, 6> expected{}, found{};
+    REQUIRE(dem->GetGeoTransform(expected.data()) == CE_None);
+    REQUIRE(maps->GetGeoTransform(found.data()) == CE_None);
+    for (std::size_t k = 0; k < 6; ++k) {
+      INFO("geotransform term " << k);
+      CHECK(found[k] == Approx(expected[k]).epsilon(1e-9).margin(1e-12));
+    }
+    REQUIRE(maps->GetSpatialRef() != nullptr);
+    CHECK(maps->GetSpatialRef()->IsSame(dem->GetSpatialRef()));
+  }
+
+  SECTION("the file holds the summary maps, the gauges and a closed volume balance") {
+    const auto max_depth = read_variable(out, "max_depth");
+    CHECK(max_depth.size() == 40 * 30);
+    CHECK(*std::max_element(max_depth.begin(), max_depth.end()) > 1.0);
+    const auto bed = read_variable(out, "bed_elevation");
+    // The first cell is the south-west corner: the DEM's value at its centre.
+    CHECK(bed.front() == Approx(300.0 + 0.002 * (195.0 * 195.0 + 145.0 * 145.0) + 0.05));
+    for (const char* name : {"max_speed", "max_hazard", "arrival_time", "inundation_duration"}) {
+      INFO(name);
+      CHECK(read_variable(out, name).size() == 40 * 30);
+    }
+
+    const auto error = read_variable(out, "volume_error");
+    const auto inflow = read_variable(out, "volume_inflow");
+    const auto outflow = read_variable(out, "volume_outflow");
+    const auto time = read_variable(out, "series_time");
+    REQUIRE(error.size() >= 40);  // every 0.5 s of 20 s, and the output times
+    CHECK(time.front() == 0.0);
+    CHECK(time.back() == 20.0);
+    for (std::size_t k = 0; k < error.size(); ++k) {
+      INFO("sample " << k << " at t = " << time[k]);
+      CHECK(std::abs(error[k]) < 1e-10);
+    }
+    CHECK(inflow.back() > 0.0);
+    CHECK(outflow.back() > 0.0);
+
+    const auto gauge_depth = read_variable(out, "gauge_depth");  // (series_time, gauge)
+    REQUIRE(gauge_depth.size() == 2 * time.size());
+    CHECK(gauge_depth[0] > 5.0);   // the lake's middle
+    CHECK(gauge_depth[1] == 0.0);  // high on the bank
+  }
+
+  SECTION("xarray opens it") {
+    const auto python = run(
+        "/usr/bin/python3 -c 'import sys, xarray; ds = xarray.open_dataset(sys.argv[1]); "
+        "assert ds[\"max_depth\"].dims == (\"y\", \"x\"); "
+        "assert list(ds[\"gauge_name\"].values) == [\"centre\", \"bank\"]' " +
+        out.string());
+    INFO(python.output);
+    CHECK(python.status == 0);
   }
   fs::remove_all(dir);
 }

@@ -22,6 +22,8 @@ using nlohmann::json;
 using swemps::scenario::PlaneBedSpec;
 using swemps::scenario::ProfileBedSpec;
 using swemps::scenario::ScenarioError;
+using swemps::scenario::UniformDepth;
+using swemps::scenario::VolumeRule;
 
 // The smallest valid scene; broken cases are small edits of it, so each fails for one reason.
 json minimal_scene() {
@@ -179,14 +181,14 @@ std::vector<Broken> broken_effect_scenes() {
       {"misspelt friction key", with_key("frction", R"({"manning_n": 0.01})"), "/frction",
        "did you mean \"friction\"?"},
       {"bed not an object", with_key("bed", R"([[0, 0], [1, 1]])"), "/bed",
-       "found an array of 2 elements, expected an object with exactly one of \"plane\" or "
-       "\"profile_x\""},
+       "found an array of 2 elements, expected an object with exactly one of \"plane\", "
+       "\"profile_x\" or \"raster\""},
       {"bed with both plane and profile_x",
        with_key("bed", R"({"plane": {"slope": [0.1, 0]}, "profile_x": [[0, 0], [1, 1]]})"), "/bed",
-       "found both \"plane\" and \"profile_x\", expected exactly one of \"plane\" or "
-       "\"profile_x\""},
+       "found both \"plane\" and \"profile_x\", expected exactly one of \"plane\", "
+       "\"profile_x\" or \"raster\""},
       {"bed with neither plane nor profile_x", with_key("bed", "{}"), "/bed",
-       "expected exactly one of \"plane\" or \"profile_x\""},
+       "found none of \"plane\", \"profile_x\" or \"raster\", expected exactly one of"},
       {"misspelt bed kind", with_key("bed", R"({"plane_": {}})"), "/bed/plane_",
        "did you mean \"plane\"?"},
       {"misspelt plane key", with_key("bed", R"({"plane": {"slop": [0.1, 0]}})"), "/bed/plane/slop",
@@ -327,12 +329,12 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   REQUIRE(s.water.size() == 2);
   const std::vector<swemps::scenario::Point> rectangle{{0, 0}, {4, 0}, {4, 1}, {0, 1}};
   CHECK(s.water[0].polygon == rectangle);
-  CHECK(s.water[0].depth_m == 0.5);
+  CHECK(std::get<UniformDepth>(s.water[0].depth).depth_m == 0.5);
   CHECK(s.water[0].velocity_m_s == std::array<double, 2>{1.5, -0.5});
   CHECK(s.water[0].spacing_m == 0.1);
   const std::vector<swemps::scenario::Point> triangle{{5, 0}, {7, 0}, {6, 2}};
   CHECK(s.water[1].polygon == triangle);
-  CHECK(s.water[1].depth_m == 0.2);
+  CHECK(std::get<UniformDepth>(s.water[1].depth).depth_m == 0.2);
   CHECK(s.water[1].velocity_m_s == std::array<double, 2>{0.0, 0.0});
   CHECK(s.water[1].spacing_m == 0.05);
 
@@ -348,7 +350,7 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   CHECK(plane->slope == std::array<double, 2>{0.1, -0.05});
   CHECK(plane->origin_m == swemps::scenario::Point{3.4, 1.0});
   REQUIRE(s.manning_n.has_value());
-  CHECK(*s.manning_n == 0.025);
+  CHECK(std::get<double>(*s.manning_n) == 0.025);
   REQUIRE(s.splitting.has_value());
   CHECK(s.splitting->area_ratio_threshold == 2.0);
   CHECK(s.splitting->alpha_s == 0.5);
@@ -358,10 +360,11 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   CHECK(s.output.path == (fs::absolute(base) / "out" / "dam.nc").lexically_normal());
   CHECK(s.output.times_s == std::vector<double>{0.5, 1.0, 2.0});
   CHECK(s.output.grid.spacing_m == 0.2);
-  CHECK(s.output.grid.bounds.x_min == 0);
-  CHECK(s.output.grid.bounds.x_max == 8);
-  CHECK(s.output.grid.bounds.y_min == 0);
-  CHECK(s.output.grid.bounds.y_max == 2);
+  REQUIRE(s.output.grid.bounds.has_value());
+  CHECK(s.output.grid.bounds->x_min == 0);
+  CHECK(s.output.grid.bounds->x_max == 8);
+  CHECK(s.output.grid.bounds->y_min == 0);
+  CHECK(s.output.grid.bounds->y_max == 2);
   CHECK_FALSE(s.output.write_particles);
 }
 
@@ -385,11 +388,16 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK_FALSE(s.manning_n.has_value());                  // no friction
   CHECK_FALSE(s.splitting.has_value());                  // no splitting
   CHECK(s.output.times_s == std::vector<double>{0.5});
-  CHECK(s.output.grid.spacing_m == Approx(0.02));  // half the finer of 0.1 and 0.04
-  CHECK(s.output.grid.bounds.x_min == s.domain.x_min);
-  CHECK(s.output.grid.bounds.x_max == s.domain.x_max);
-  CHECK(s.output.grid.bounds.y_min == s.domain.y_min);
-  CHECK(s.output.grid.bounds.y_max == s.domain.y_max);
+  REQUIRE(s.output.grid.spacing_m.has_value());
+  CHECK(*s.output.grid.spacing_m == Approx(0.02));  // half the finer of 0.1 and 0.04
+  CHECK_FALSE(s.output.grid.bounds.has_value());     // the domain
+  CHECK_FALSE(s.domain_from_bed);
+  CHECK(s.water[0].volumes == VolumeRule::geometric);
+  CHECK(s.inflows.empty());
+  CHECK(s.outflows.empty());
+  CHECK(s.output.gauges.empty());
+  CHECK(s.output.series_interval_s == Approx(0.5 / 500));
+  CHECK(s.output.wet_depth_m == 0.01);
   CHECK(s.output.write_particles);
   CHECK(s.output.path.is_absolute());
   CHECK(s.output.path == (fs::absolute(base) / "ritter.nc").lexically_normal());
@@ -430,7 +438,7 @@ TEST_CASE("bed, friction and splitting arrive as given, with defaults for what i
   SECTION("friction stores Manning's n") {
     const auto s = parse_text(with_key("friction", R"({"manning_n": 0.001})"));
     REQUIRE(s.manning_n.has_value());
-    CHECK(*s.manning_n == 0.001);
+    CHECK(std::get<double>(*s.manning_n) == 0.001);
     CHECK(std::holds_alternative<std::monostate>(s.bed));
     CHECK_FALSE(s.splitting.has_value());
   }
@@ -571,11 +579,320 @@ TEST_CASE("the shipped cases parse", "[scenario]") {
       const std::vector<swemps::scenario::Point> expected{{3.4, 0.0}, {10.0, 0.66}};
       CHECK(profile->points == expected);
       REQUIRE(s->manning_n.has_value());
-      CHECK(*s->manning_n == 0.001);
+      CHECK(std::get<double>(*s->manning_n) == 0.001);
       REQUIRE(s->splitting.has_value());
       CHECK(s->splitting->area_ratio_threshold == 1.5);
       CHECK(s->splitting->alpha_s == 0.7);
       CHECK(s->splitting->max_particles == 0);
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Terrain, inflow, outflow and the flood-map output
+
+namespace {
+
+using swemps::scenario::DepthRaster;
+using swemps::scenario::LevelSurface;
+using swemps::scenario::RasterBedSpec;
+using swemps::scenario::RasterSpec;
+
+// A scene on a raster bed in map coordinates, without a domain (the raster's extent).
+json raster_scene() {
+  return json::parse(R"({
+    "end_time": 10,
+    "bed": {"raster": "dem.tif", "crs": "EPSG:32616"},
+    "water": [{"fill": {"rectangle": {"x_min": 500100, "x_max": 500300,
+                                      "y_min": 4000100, "y_max": 4000200}},
+               "surface_elevation": 310, "spacing": 10}]
+  })");
+}
+
+std::string raster_edited(const std::function<void(json&)>& edit) {
+  json scene = raster_scene();
+  edit(scene);
+  return scene.dump(2);
+}
+
+const json kInflow = json::parse(R"({"line": [[1, 0], [1, 1]], "hydrograph": [[0, 0], [5, 1]]})");
+
+// Broken terrain, inflow, outflow and output sections; `path` is the whole json_path().
+std::vector<Broken> broken_terrain_scenes() {
+  return {
+      {"raster bed path empty", with_key("bed", R"({"raster": ""})"), "/bed/raster",
+       "found a string \"\", expected a path to a raster of bed elevations"},
+      {"raster bed path a number", with_key("bed", R"({"raster": 5})"), "/bed/raster",
+       "found 5, expected a path"},
+      {"raster and plane", with_key("bed", R"({"raster": "a.tif", "plane": {}})"), "/bed",
+       "found both \"plane\" and \"raster\""},
+      {"crs with a plane bed", with_key("bed", R"({"plane": {}, "crs": "EPSG:32616"})"),
+       "/bed/crs", "no \"crs\" here (it goes with a \"raster\" bed)"},
+      {"empty crs", with_key("bed", R"({"raster": "a.tif", "crs": ""})"), "/bed/crs",
+       "expected a projected CRS in metres"},
+      {"no domain without a raster bed", edited([](json& s) { s.erase("domain"); }), "/domain",
+       "only a raster bed, whose extent it then is, lets it be left out"},
+      {"both manning_n and a map",
+       with_key("friction", R"({"manning_n": 0.03, "manning_n_raster": "n.tif"})"), "/friction",
+       "found both \"manning_n\" and \"manning_n_raster\""},
+      {"crs with a uniform n", with_key("friction", R"({"manning_n": 0.03, "crs": "EPSG:32616"})"),
+       "/friction/crs", "it goes with \"manning_n_raster\""},
+      {"roughness map not a string", with_key("friction", R"({"manning_n_raster": 3})"),
+       "/friction/manning_n_raster", "expected a path to a raster of Manning's n"},
+      {"roughness crs on a raster bed", raster_edited([](json& s) {
+         s["friction"] = {{"manning_n_raster", "n.tif"}, {"crs", "EPSG:32616"}};
+       }),
+       "/friction/crs", "every raster is warped to the bed's CRS"},
+      {"two rasters naming different CRSs", edited([](json& s) {
+         s["friction"] = {{"manning_n_raster", "n.tif"}, {"crs", "EPSG:32616"}};
+         s["water"][0] = {{"depth_raster", "h.tif"}, {"crs", "EPSG:32617"}, {"spacing", 0.1}};
+       }),
+       "/water/0/crs", "the same CRS for every raster"},
+      {"fill without a bed", edited([](json& s) {
+         s["water"][0] = {{"fill", {{"polygon", {{0, 0}, {1, 0}, {1, 1}}}}},
+                          {"surface_elevation", 1},
+                          {"spacing", 0.1}};
+       }),
+       "/water/0/fill", "a \"bed\" to fill"},
+      {"fill and depth", raster_edited([](json& s) { s["water"][0]["depth"] = 1; }), "/water/0",
+       "found both \"depth\" and \"fill\", expected exactly one of \"depth\", \"fill\" or "
+       "\"depth_raster\""},
+      {"fill with the shape outside it", raster_edited([](json& s) {
+         s["water"][0]["polygon"] = {{500100, 4000100}, {500200, 4000100}, {500200, 4000200}};
+       }),
+       "/water/0/polygon", "with \"fill\" the shape goes inside it"},
+      {"fill without a surface", raster_edited([](json& s) {
+         s["water"][0].erase("surface_elevation");
+       }),
+       "/water/0/surface_elevation", "found nothing (key missing), expected a number (metres"},
+      {"fill without a shape", raster_edited([](json& s) { s["water"][0]["fill"] = json::object(); }),
+       "/water/0/fill", "neither \"rectangle\" nor \"polygon\""},
+      {"fill outside the domain", edited([](json& s) {
+         s["bed"] = {{"plane", json::object()}};
+         s["water"][0] = {{"fill", {{"polygon", {{0, 0}, {12, 0}, {1, 1}}}}},
+                          {"surface_elevation", 1},
+                          {"spacing", 0.1}};
+       }),
+       "/water/0/fill/polygon/1", "outside the domain [0, 10] x [0, 1]"},
+      {"min_depth with a uniform depth", edited([](json& s) { s["water"][0]["min_depth"] = 0.1; }),
+       "/water/0/min_depth", "it goes with \"fill\" or \"depth_raster\""},
+      {"negative min_depth", raster_edited([](json& s) { s["water"][0]["min_depth"] = -0.1; }),
+       "/water/0/min_depth", "found -0.1, expected a number >= 0 (metres)"},
+      {"misspelt volume rule", raster_edited([](json& s) { s["water"][0]["volumes"] = "balance"; }),
+       "/water/0/volumes", "one of \"geometric\", \"balanced\" (did you mean \"balanced\"?)"},
+      {"geometric beside balanced", raster_edited([](json& s) {
+         s["water"].push_back({{"rectangle",
+                                {{"x_min", 500000}, {"x_max", 500050}, {"y_min", 4000000},
+                                 {"y_max", 4000050}}},
+                               {"depth", 1},
+                               {"spacing", 10},
+                               {"volumes", "geometric"}});
+       }),
+       "/water/1/volumes", "found \"geometric\" while /water/0 is balanced"},
+      {"depth raster with a surface", edited([](json& s) {
+         s["water"][0] = {{"depth_raster", "h.tif"}, {"surface_elevation", 3}, {"spacing", 0.1}};
+       }),
+       "/water/0/surface_elevation", "it goes with \"fill\""},
+      {"depth raster path empty", edited([](json& s) {
+         s["water"][0] = {{"depth_raster", ""}, {"spacing", 0.1}};
+       }),
+       "/water/0/depth_raster", "expected a path to a raster of water depths"},
+      {"inflow not an array", with_key("inflow", R"({"line": [[1, 0], [1, 1]]})"), "/inflow",
+       "found an object, expected an array of inflow lines"},
+      {"inflow line of three points", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["line"] = {{1, 0}, {1, 0.5}, {1, 1}};
+       }),
+       "/inflow/0/line", "found an array of 3 elements, expected an array of exactly 2"},
+      {"inflow without a hydrograph", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0].erase("hydrograph");
+       }),
+       "/inflow/0", "neither \"hydrograph\" nor \"hydrograph_csv\""},
+      {"inflow with two hydrographs", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["hydrograph_csv"] = "q.csv";
+       }),
+       "/inflow/0", "both \"hydrograph\" and \"hydrograph_csv\""},
+      {"hydrograph going back in time", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["hydrograph"] = {{0, 1}, {5, 2}, {5, 3}};
+       }),
+       "/inflow/0/hydrograph/2/0", "found t = 5, expected a time greater than the previous"},
+      {"negative discharge", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["hydrograph"] = {{0, -1}};
+       }),
+       "/inflow/0/hydrograph/0/1", "found -1, expected a discharge >= 0 (m^3/s)"},
+      {"empty hydrograph", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["hydrograph"] = json::array();
+       }),
+       "/inflow/0/hydrograph", "found an empty array"},
+      {"inflow direction along the line", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["direction"] = {1, 1};
+       }),
+       "/inflow/0/direction", "at 45 degrees to the line, expected a direction normal to the line"},
+      {"zero inflow direction", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["direction"] = {0, 0};
+       }),
+       "/inflow/0/direction", "found a zero or unbounded vector"},
+      {"inflow spacing needed without water", edited([](json& s) {
+         s.erase("water");
+         s["inflow"] = {kInflow};
+       }),
+       "/inflow/0/spacing", "required when the scene has no water"},
+      {"two inflows of one name", edited([](json& s) {
+         s["inflow"] = {kInflow, kInflow};
+         s["inflow"][0]["name"] = "river";
+         s["inflow"][1]["name"] = "river";
+       }),
+       "/inflow/1/name", "the name \"river\" again (inflow 0 has it)"},
+      {"inflow line outside the domain", edited([](json& s) {
+         s["inflow"] = {kInflow};
+         s["inflow"][0]["line"] = {{1, 0}, {1, 2}};
+       }),
+       "/inflow/0/line/1", "expected an inflow line lying inside the domain"},
+      {"no water and no inflow", edited([](json& s) { s["water"] = json::array(); }), "/water",
+       "found an empty array, expected a non-empty array of water bodies, or an \"inflow\""},
+      {"outflow line of one point", with_key("outflow", R"([{"line": [[10, 0]]}])"),
+       "/outflow/0/line", "found an array of 1 element, expected an array of at least 2"},
+      {"outflow without a line", with_key("outflow", R"([{}])"), "/outflow/0/line",
+       "found nothing (key missing)"},
+      {"misspelt outflow key", with_key("outflow", R"([{"lin": [[10, 0], [10, 1]]}])"),
+       "/outflow/0/lin", "did you mean \"line\"?"},
+      {"gauge outside the domain", edited([](json& s) {
+         s["output"] = {{"gauges", {{{"name", "a"}, {"x", 20}, {"y", 0.5}}}}};
+       }),
+       "/output/gauges/0", "found the point (20, 0.5) outside the domain [0, 10] x [0, 1], "
+                           "expected a gauge inside the domain"},
+      {"two gauges of one name", edited([](json& s) {
+         s["output"] = {{"gauges",
+                         {{{"name", "a"}, {"x", 1}, {"y", 0.5}}, {{"name", "a"}, {"x", 2}, {"y", 0.5}}}}};
+       }),
+       "/output/gauges/1/name", "the name \"a\" again (gauge 0 has it)"},
+      {"gauge without x", edited([](json& s) {
+         s["output"] = {{"gauges", {{{"name", "a"}, {"y", 0.5}}}}};
+       }),
+       "/output/gauges/0/x", "found nothing (key missing), expected a number (metres)"},
+      {"zero series interval", edited([](json& s) { s["output"] = {{"series_interval", 0}}; }),
+       "/output/series_interval", "found 0, expected a number > 0 (seconds)"},
+      {"series interval far too short", edited([](json& s) {
+         s["output"] = {{"series_interval", 1e-9}};
+       }),
+       "/output/series_interval", "expected an interval giving at most 1000000 samples"},
+      {"negative wet depth", edited([](json& s) { s["output"] = {{"wet_depth", -0.01}}; }),
+       "/output/wet_depth", "found -0.01, expected a number >= 0 (metres)"},
+  };
+}
+
+}  // namespace
+
+TEST_CASE("broken terrain, inflow, outflow and output sections point at the exact key",
+          "[scenario]") {
+  check_broken(broken_terrain_scenes(), true);
+}
+
+TEST_CASE("a raster scene arrives as given, with its domain left to the bed", "[scenario]") {
+  json scene = raster_scene();
+  scene["friction"] = {{"manning_n_raster", "landuse/n.tif"}};
+  scene["water"].push_back(json::parse(R"({"depth_raster": "NETCDF:\"h.nc\":depth",
+                                           "spacing": 20, "min_depth": 0.05, "volumes": "balanced",
+                                           "velocity": [0.5, 0]})"));
+  scene["water"].push_back(json::parse(R"({"rectangle": {"x_min": 500000, "x_max": 500050,
+                                           "y_min": 4000000, "y_max": 4000050},
+                                           "depth": 1, "spacing": 10})"));
+  scene["inflow"] = json::parse(R"([
+    {"line": [[500000, 4000100], [500000, 4000200]], "hydrograph_csv": "flood.csv"},
+    {"name": "creek", "line": [[500100, 4000300], [500200, 4000300]],
+     "hydrograph": [[0, 0], [60, 5], [120, 0]], "spacing": 5, "depth": 0.5, "direction": [0, -2]}
+  ])");
+  scene["outflow"] = json::parse(R"([{"line": [[500390, 4000000], [500390, 4000300]]}])");
+  scene["output"] = json::parse(R"({"gauges": [{"name": "bridge", "x": 500200, "y": 4000150},
+                                               {"x": 500300, "y": 4000100}],
+                                    "series_interval": 2, "wet_depth": 0.05})");
+  const fs::path base = fs::temp_directory_path() / "swemps-raster-scene";
+  const auto s = swemps::scenario::parse(scene.dump(), base, "lake");
+  const auto at_base = [&](const std::string& name) {
+    return (fs::absolute(base) / name).lexically_normal();
+  };
+
+  CHECK(s.domain_from_bed);
+  const auto* bed = std::get_if<RasterBedSpec>(&s.bed);
+  REQUIRE(bed != nullptr);
+  CHECK(bed->raster.path == at_base("dem.tif"));
+  CHECK(bed->raster.crs == "EPSG:32616");
+  REQUIRE(s.manning_n.has_value());
+  const auto* roughness = std::get_if<RasterSpec>(&*s.manning_n);
+  REQUIRE(roughness != nullptr);
+  CHECK(roughness->path == at_base("landuse/n.tif"));
+  CHECK(roughness->crs.empty());
+
+  REQUIRE(s.water.size() == 3);
+  const auto* level = std::get_if<LevelSurface>(&s.water[0].depth);
+  REQUIRE(level != nullptr);
+  CHECK(level->surface_elevation_m == 310.0);
+  const std::vector<swemps::scenario::Point> fill_box{
+      {500100, 4000100}, {500300, 4000100}, {500300, 4000200}, {500100, 4000200}};
+  CHECK(s.water[0].polygon == fill_box);
+  CHECK(s.water[0].min_depth_m == 0.01);
+  CHECK(s.water[0].volumes == VolumeRule::balanced);
+  const auto* raster = std::get_if<DepthRaster>(&s.water[1].depth);
+  REQUIRE(raster != nullptr);
+  // A GDAL dataset name keeps its driver and variable; only the file is resolved.
+  CHECK(raster->raster.path.string() == "NETCDF:\"" + at_base("h.nc").string() + "\":depth");
+  CHECK(s.water[1].polygon.empty());  // the whole domain
+  CHECK(s.water[1].min_depth_m == 0.05);
+  CHECK(s.water[1].velocity_m_s == std::array<double, 2>{0.5, 0.0});
+  // One balanced body balances them all.
+  CHECK(std::holds_alternative<UniformDepth>(s.water[2].depth));
+  CHECK(s.water[2].volumes == VolumeRule::balanced);
+
+  REQUIRE(s.inflows.size() == 2);
+  CHECK(s.inflows[0].name == "inflow 0");
+  CHECK(std::get<fs::path>(s.inflows[0].hydrograph) == at_base("flood.csv"));
+  CHECK(s.inflows[0].spacing_m == 10.0);  // the finest water spacing
+  CHECK_FALSE(s.inflows[0].depth_m.has_value());
+  CHECK_FALSE(s.inflows[0].direction.has_value());
+  CHECK(s.inflows[1].name == "creek");
+  const std::vector<std::array<double, 2>> table{{0, 0}, {60, 5}, {120, 0}};
+  CHECK(std::get<std::vector<std::array<double, 2>>>(s.inflows[1].hydrograph) == table);
+  CHECK(s.inflows[1].spacing_m == 5.0);
+  CHECK(s.inflows[1].depth_m == 0.5);
+  CHECK(s.inflows[1].direction == std::array<double, 2>{0.0, -2.0});
+  REQUIRE(s.outflows.size() == 1);
+  CHECK(s.outflows[0].line.size() == 2);
+
+  CHECK_FALSE(s.output.grid.spacing_m.has_value());  // the bed raster's own cells
+  CHECK_FALSE(s.output.grid.bounds.has_value());
+  REQUIRE(s.output.gauges.size() == 2);
+  CHECK(s.output.gauges[0].name == "bridge");
+  CHECK(s.output.gauges[0].position_m == swemps::scenario::Point{500200, 4000150});
+  CHECK(s.output.gauges[1].name == "gauge 1");
+  CHECK(s.output.series_interval_s == 2.0);
+  CHECK(s.output.wet_depth_m == 0.05);
+}
+
+TEST_CASE("a scene may start dry when an inflow brings the water", "[scenario]") {
+  const auto s = parse_text(edited([](json& j) {
+    j.erase("water");
+    j["inflow"] = {kInflow};
+    j["inflow"][0]["spacing"] = 0.05;
+  }));
+  CHECK(s.water.empty());
+  REQUIRE(s.inflows.size() == 1);
+  REQUIRE(s.output.grid.spacing_m.has_value());
+  CHECK(*s.output.grid.spacing_m == Approx(0.025));  // half the inflow's spacing
+}
+
+TEST_CASE("a raster bed may keep a domain and choose a grid spacing", "[scenario]") {
+  const auto s = parse_text(raster_edited([](json& j) {
+    j["domain"] = {{"x_min", 500000}, {"x_max", 500400}, {"y_min", 4000000}, {"y_max", 4000300}};
+    j["output"] = {{"grid", {{"spacing", 20}}}};
+  }));
+  CHECK_FALSE(s.domain_from_bed);
+  CHECK(s.domain.x_max == 500400);
+  CHECK(s.output.grid.spacing_m == 20.0);
 }

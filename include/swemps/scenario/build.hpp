@@ -1,16 +1,67 @@
 #pragma once
-// From a validated Scenario to the objects that run it: the particles, the walls, the
-// effects the scene asks for, the output grid.
+// From a validated Scenario to the objects that run it: the rasters read and the domain
+// settled (the terrain), the particles, the walls, the effects the scene asks for, the output
+// grid. Files are read here, through io; the solver gets plain objects.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "swemps/scenario/scenario.hpp"
+#include "swemps/swe/bed.hpp"
 #include "swemps/swe/operators.hpp"
 #include "swemps/swe/simulation.hpp"
+#include "swemps/terrain/gridded_field.hpp"
 
 namespace swemps::scenario {
 
+// What the scene's files say about the ground, with the domain they settle.
+struct Terrain {
+  Rectangle domain;  // as given, or the bed raster's extent
+  std::shared_ptr<const swe::BedSource> bed;               // null: flat at z = 0
+  std::shared_ptr<const terrain::GriddedField> bed_raster;  // raster beds only
+  std::shared_ptr<const terrain::GriddedField> roughness;   // Manning's n map only
+  // Per water body, the depth raster it names; null for the other bodies.
+  std::vector<std::shared_ptr<const terrain::GriddedField>> water_depth;
+  std::string crs_wkt;  // the scene's CRS (the bed raster's, or another raster's); empty: none
+};
+
+// Reads the rasters the scene names, warped to the scene's CRS, and settles the domain:
+// the bed raster's extent when the file gives none, which also completes the checks that
+// need the domain (check_within_domain). Throws ScenarioError at the key that named the file
+// for a raster that cannot be read, does not cover the domain, has nodata inside it, or (for
+// Manning's n) holds a value that is not > 0 there.
+Terrain read_terrain(const Scenario& scene);
+
+// How the starting particles got their volumes.
+struct StartingVolumes {
+  // V = depth x lattice cell area, summed over all particles (the volume before balancing).
+  double geometric_m3 = 0.0;
+  // Whether some water's depth came from the terrain (a level surface or a depth raster).
+  bool from_terrain = false;
+  // When the scene balances its volumes: what balancing did, and the depth tolerance it had.
+  std::optional<swe::VolumeBalanceReport> balance;
+  double balance_tolerance_m = 0.0;
+};
+
+struct BuiltScene {
+  Terrain terrain;
+  swe::Simulation simulation;
+  StartingVolumes volumes;
+};
+
+// The scene ready to run: terrain read, particles seeded (and balanced, if asked), effects in
+// place. Throws ScenarioError for what only the files or the seeding can reveal.
+BuiltScene build(const Scenario& scene);
+
+// build(scene).simulation, for callers that need nothing else.
 swe::Simulation make_simulation(const Scenario& scene);
 
-// The output grid: cell centres covering the requested bounds at the requested spacing.
-swe::RegularGrid output_grid(const Scenario& scene);
+// The output grid: the bed raster's own cells that lie whole inside the grid bounds when the
+// scene gives a raster bed and no grid spacing; otherwise cell centres covering the bounds at
+// the requested spacing. Bounds default to the domain. Throws ScenarioError when no raster
+// cell lies whole inside the bounds.
+swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain);
 
 }  // namespace swemps::scenario

@@ -1,6 +1,7 @@
 #pragma once
 // A validated scene: plain structs, filled from scenario.json by load() and checked there.
-// Nothing below this module knows JSON exists.
+// Nothing below this module knows JSON exists. Files the scene names (rasters, hydrograph
+// tables) are only named here; build reads them.
 
 #include <array>
 #include <filesystem>
@@ -21,13 +22,46 @@ struct Rectangle {
   double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0;  // m
 };
 
-// A body of still or moving water: a polygon (a rectangle is stored as its 4 corners),
-// filled with particles on a square lattice of the given spacing.
+// A raster the scene reads: bed elevation, Manning's n or water depth.
+struct RasterSpec {
+  // Absolute once loaded; or a GDAL dataset name such as NETCDF:"/abs/file.nc":elevation.
+  std::filesystem::path path;
+  // The projected CRS (metres) to warp the raster to, as the scene gives it ("EPSG:32616");
+  // empty when the scene gives none.
+  std::string crs;
+};
+
+// How deep a body of water is where it starts.
+struct UniformDepth {
+  double depth_m = 0.0;  // above the bed, everywhere in the shape
+};
+// A lake filled to a level: depth z_s - z_b(x), which needs a bed.
+struct LevelSurface {
+  double surface_elevation_m = 0.0;  // z_s
+};
+// Depth read from a raster; its nodata cells are dry.
+struct DepthRaster {
+  RasterSpec raster;
+};
+using WaterDepth = std::variant<UniformDepth, LevelSurface, DepthRaster>;
+
+// How the particles' volumes are set.
+enum class VolumeRule {
+  geometric,  // V = depth x lattice cell area: the shape's volume exactly
+  balanced,   // rescaled so that eq 7 gives each particle its starting depth: water at rest
+};
+
+// A body of water, filled with particles on a square lattice of the given spacing.
 struct WaterBody {
-  std::vector<Point> polygon;  // counter-clockwise or clockwise, not closed, >= 3 vertices
-  double depth_m = 0.0;
+  // Counter-clockwise or clockwise, not closed, >= 3 vertices (a rectangle is stored as its
+  // 4 corners). Empty only for a depth raster without a shape: then the whole domain.
+  std::vector<Point> polygon;
+  WaterDepth depth;
+  // Level surface and depth raster: lattice points this shallow or dry get no particle.
+  double min_depth_m = 0.01;
   std::array<double, 2> velocity_m_s{0.0, 0.0};
   double spacing_m = 0.0;
+  VolumeRule volumes = VolumeRule::geometric;
 };
 
 enum class WallCondition { slip, no_slip };
@@ -40,18 +74,51 @@ struct Wall {
 
 // Analytic beds. No bed at all (the default) is a flat bed at z = 0 and costs nothing.
 struct PlaneBedSpec {
-  double elevation_m = 0.0;            // z_b at the origin
+  double elevation_m = 0.0;               // z_b at the origin
   std::array<double, 2> slope{0.0, 0.0};  // dz_b/dx, dz_b/dy (m/m)
   Point origin_m{0.0, 0.0};
 };
 struct ProfileBedSpec {
   std::vector<Point> points;  // (x, z_b) in m, x strictly increasing; level beyond the ends
 };
-using BedSpec = std::variant<std::monostate, PlaneBedSpec, ProfileBedSpec>;
+// A terrain model. Its CRS (raster.crs, or the file's own) is the scene's: every other raster
+// is warped to it, and the output is georeferenced in it.
+struct RasterBedSpec {
+  RasterSpec raster;
+};
+using BedSpec = std::variant<std::monostate, PlaneBedSpec, ProfileBedSpec, RasterBedSpec>;
+
+// Manning's n (s m^-1/3): one value for the whole bed, or a roughness map (land use).
+using ManningSpec = std::variant<double, RasterSpec>;
+
+// A line water enters through, at the rate of a discharge hydrograph.
+struct Inflow {
+  std::string name;
+  std::array<Point, 2> line;
+  // (time s, discharge m^3/s) points, or a CSV file of them (absolute path).
+  std::variant<std::vector<std::array<double, 2>>, std::filesystem::path> hydrograph;
+  double spacing_m = 0.0;
+  std::optional<double> depth_m;  // absent: the critical depth of the discharge
+  // The way the water enters, normal to the line; absent: towards the domain's centre.
+  std::optional<std::array<double, 2>> direction;
+};
+
+// A polyline water leaves the domain through.
+struct Outflow {
+  std::vector<Point> line;  // >= 2 points
+};
 
 struct GridSpec {
-  double spacing_m = 0.0;
-  Rectangle bounds;  // cell centres at bounds.x_min + (i + 0.5) spacing_m, ...
+  // Absent only with a raster bed: then the bed raster's own cells.
+  std::optional<double> spacing_m;
+  // Absent: the domain. Cell centres at bounds.x_min + (i + 0.5) spacing_m, ...
+  std::optional<Rectangle> bounds;
+};
+
+// A point where depth and velocity are recorded over time.
+struct Gauge {
+  std::string name;
+  Point position_m;
 };
 
 struct Output {
@@ -59,6 +126,9 @@ struct Output {
   std::vector<double> times_s;  // sorted, unique, in (0, end_time]; t = 0 is always written too
   GridSpec grid;
   bool write_particles = true;
+  std::vector<Gauge> gauges;
+  double series_interval_s = 0.0;  // gauges, volume balance and flood statistics
+  double wet_depth_m = 0.01;       // the depth a cell must exceed to count as wet
 };
 
 struct Scenario {
@@ -66,12 +136,17 @@ struct Scenario {
   std::string description;
   double end_time_s = 0.0;
   swe::Settings numerics;
-  Rectangle domain;  // particles leaving it are removed and their volume booked
-  std::vector<WaterBody> water;
+  // Particles leaving it are removed and their volume booked. Left out of the file with a
+  // raster bed (domain_from_bed): then all zero here, and build takes the raster's extent.
+  Rectangle domain;
+  bool domain_from_bed = false;
+  std::vector<WaterBody> water;  // may be empty when there are inflows
   std::vector<Wall> walls;
   BedSpec bed;
-  std::optional<double> manning_n;  // s m^-1/3; absent: no friction
+  std::optional<ManningSpec> manning_n;  // absent: no friction
   std::optional<splitting::SplittingSettings> splitting;  // absent: no splitting
+  std::vector<Inflow> inflows;
+  std::vector<Outflow> outflows;
   Output output;
 };
 
@@ -95,5 +170,10 @@ Scenario load(const std::filesystem::path& file);
 // The same from text; `base_dir` resolves relative paths, `default_name` names an unnamed scene.
 Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name = "scenario");
+
+// The checks that need the domain: water, inflow lines and gauges lie in it, and a grid over
+// it is not absurdly fine. parse() makes them when the file gives the domain; build makes them
+// once the bed raster has given it. Throws ScenarioError.
+void check_within_domain(const Scenario& scene, const Rectangle& domain);
 
 }  // namespace swemps::scenario

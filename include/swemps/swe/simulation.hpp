@@ -52,6 +52,7 @@ struct VolumeBalanceReport {
   int iterations = 0;
   double max_depth_error_m = 0.0;  // max |h_i - target_i| after the last iteration
   double volume_before_m3 = 0.0, volume_after_m3 = 0.0;
+  std::size_t removed_particles = 0;  // shore particles no positive volume could balance
 };
 
 struct EffectTime {
@@ -71,8 +72,8 @@ class Simulation {
   // that the eq 7 depth at each particle equals target_depth_m[i] (indexed like particles()
   // before the call), iterating V_i <- V_i d_i / h_i together with eq 9's radius until
   // max |h_i - d_i| <= tolerance_m. The water surface h + z_b is then level at every particle
-  // and eq 6 gives exactly no force. Resets the ledger's initial volume. Call before the first
-  // step.
+  // and eq 6 gives exactly no force. Shore particles that no positive volume balances are
+  // removed. Resets the ledger's initial volume. Call before the first step.
   VolumeBalanceReport balance_volumes(std::vector<double> target_depth_m, double tolerance_m,
                                       int max_iterations);
   // eq 13 on current fields; throws SimulationError if the step is below the floor or a
