@@ -12,6 +12,7 @@ packages=(
   libspdlog-dev                   # logging
   catch2                          # unit tests (v2)
   python3-matplotlib python3-netcdf4 python3-numpy   # plots in docs/
+  python3-xarray python3-gdal      # tests open the flood maps with xarray; DEM conversion tool
 )
 
 missing=()
