@@ -70,12 +70,14 @@ class Output {
     io::Layout layout{{grid.x0, grid.y0, grid.dx, grid.dy, grid.nx, grid.ny, terrain.crs_wkt},
                       scene.output.write_particles,
                       {}};
-    for (const auto& g : gauges_) layout.gauges.push_back({g.name, g.position_m[0], g.position_m[1]});
+    for (const auto& g : gauges_)
+      layout.gauges.push_back({g.name, g.position_m[0], g.position_m[1]});
     if (terrain.bed) {
       for (std::size_t k = 0; k < grid.ny; ++k) {
         for (std::size_t i = 0; i < grid.nx; ++i) {
-          bed_m_[k * grid.nx + i] = terrain.bed->elevation(grid.x0 + static_cast<double>(i) * grid.dx,
-                                                           grid.y0 + static_cast<double>(k) * grid.dy);
+          bed_m_[k * grid.nx + i] =
+              terrain.bed->elevation(grid.x0 + static_cast<double>(i) * grid.dx,
+                                     grid.y0 + static_cast<double>(k) * grid.dy);
         }
       }
     }
@@ -109,7 +111,8 @@ class Output {
     statistics_.update(sim.time(), f.depth, f.u, f.v);
     std::vector<io::GaugeSample> at_gauges;
     for (const auto& g : gauges_) {
-      const auto p = swe::fields_at(sim.particles(), sim.kernel(), g.position_m[0], g.position_m[1]);
+      const auto p =
+          swe::fields_at(sim.particles(), sim.kernel(), g.position_m[0], g.position_m[1]);
       const bool wet = p.depth_m > wet_depth_m_;
       at_gauges.push_back({p.depth_m, wet ? p.u_m_s : kNaN, wet ? p.v_m_s : kNaN});
     }
@@ -159,7 +162,8 @@ class Output {
 
 void log_starting_volumes(const scenario::StartingVolumes& v) {
   if (!v.balance) {
-    if (v.from_terrain) spdlog::info("water from terrain: geometric volume {:.6g} m3", v.geometric_m3);
+    if (v.from_terrain)
+      spdlog::info("water from terrain: geometric volume {:.6g} m3", v.geometric_m3);
     return;
   }
   const auto& b = *v.balance;

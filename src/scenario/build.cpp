@@ -74,8 +74,8 @@ std::vector<Point> corners(const Rectangle& r) {
 // bed or a "crs" key settles it, and every later raster is warped to it.
 class SceneCrs {
  public:
-  // The request for a raster named at `json_path`: `own_crs` is the raster's "crs" key
-  // (empty when none), `setting` the name of that key in messages.
+  // The request for a raster: to its own "crs" when it has one (`setting` names that key in
+  // messages), otherwise to the scene's CRS once known.
   io::RasterRequest request(const RasterSpec& spec, const std::string& purpose,
                             const std::string& setting) const {
     io::RasterRequest r;
@@ -223,8 +223,8 @@ struct Seeded {
 };
 
 // Where (x, y) the body is this deep, or NaN (or no more than min_depth): dry.
-double starting_depth(const WaterBody& body, const Field* depth_raster,
-                      const swe::BedSource* bed, double x, double y, double z_b) {
+double starting_depth(const WaterBody& body, const Field* depth_raster, const swe::BedSource* bed,
+                      double x, double y, double z_b) {
   if (const auto* uniform = std::get_if<UniformDepth>(&body.depth)) return uniform->depth_m;
   if (const auto* level = std::get_if<LevelSurface>(&body.depth)) {
     return bed ? level->surface_elevation_m - z_b : std::numeric_limits<double>::quiet_NaN();
@@ -239,8 +239,8 @@ std::string no_water_message(const WaterBody& body, std::size_t points, double b
   std::string found = "no lattice point deeper than min_depth = " + fmt(body.min_depth_m) +
                       " m among the " + std::to_string(points) + " in the shape";
   if (const auto* level = std::get_if<LevelSurface>(&body.depth)) {
-    found += " (surface_elevation " + fmt(level->surface_elevation_m) + " m, bed " +
-             fmt(bed_min) + " to " + fmt(bed_max) + " m there)";
+    found += " (surface_elevation " + fmt(level->surface_elevation_m) + " m, bed " + fmt(bed_min) +
+             " to " + fmt(bed_max) + " m there)";
     return found;
   }
   return found + " (the depth raster is dry or nodata there)";
@@ -262,8 +262,8 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
       const double z_b = bed ? bed->elevation(point[0], point[1]) : 0.0;
       bed_min = std::min(bed_min, z_b);
       bed_max = std::max(bed_max, z_b);
-      const double h = starting_depth(body, terrain.water_depth[i].get(), bed, point[0],
-                                      point[1], z_b);
+      const double h =
+          starting_depth(body, terrain.water_depth[i].get(), bed, point[0], point[1], z_b);
       // NaN fails the test too: dry.
       if (!uniform && !(h > body.min_depth_m)) continue;
       // Each particle carries the water of its lattice cell: the scene's volume exactly.
@@ -377,8 +377,8 @@ Terrain read_terrain(const Scenario& scene) {
   if (scene.manning_n) {
     if (const auto* spec = std::get_if<RasterSpec>(&*scene.manning_n)) {
       const std::string path = "/friction/manning_n_raster";
-      auto field =
-          std::make_shared<const Field>(crs.read(*spec, "Manning's n raster", "friction.crs", path));
+      auto field = std::make_shared<const Field>(
+          crs.read(*spec, "Manning's n raster", "friction.crs", path));
       check_covers(*field, terrain.domain, path, "a Manning's n raster");
       check_positive(*field, terrain.domain, path);
       terrain.roughness = field;
@@ -446,9 +446,27 @@ BuiltScene build(const Scenario& scene) {
     // Convergence is linear, at a rate set by how far the lattice is from balanced; a few
     // hundred passes cover the steep shores of real terrain.
     constexpr int kMaxBalanceIterations = 400;
-    seeded.volumes.balance = sim.balance_volumes(
-        std::move(seeded.target_depth_m), seeded.volumes.balance_tolerance_m,
-        kMaxBalanceIterations);
+    const std::size_t seeded_count = seeded.target_depth_m.size();
+    const auto report =
+        sim.balance_volumes(std::move(seeded.target_depth_m), seeded.volumes.balance_tolerance_m,
+                            kMaxBalanceIterations);
+    // Short of the tolerance the lake starts with ripples, which the run reports; a depth
+    // error of a per cent of the water or worse means balancing failed, and running from it
+    // would only hide that.
+    if (!(report.max_depth_error_m <= 0.01 * deepest) || !std::isfinite(report.volume_after_m3)) {
+      const auto first = std::find_if(scene.water.begin(), scene.water.end(), [](const auto& w) {
+        return w.volumes == VolumeRule::balanced;
+      });
+      throw ScenarioError(
+          index_path("/water", static_cast<std::size_t>(first - scene.water.begin())) + "/volumes",
+          "balancing that failed: a depth error of " + fmt(report.max_depth_error_m) + " m after " +
+              std::to_string(report.iterations) + " passes (deepest water " + fmt(deepest) +
+              " m), " + std::to_string(report.removed_particles) + " of " +
+              std::to_string(seeded_count) + " particles removed as unbalanceable shore",
+          "water whose particle volumes can be balanced; \"volumes\": \"geometric\" starts "
+          "from depth x cell area instead");
+    }
+    seeded.volumes.balance = report;
   }
   return BuiltScene{std::move(terrain), std::move(sim), seeded.volumes};
 }
@@ -478,14 +496,14 @@ swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain) {
   const auto clamp_index = [](double index, std::size_t count) {
     return static_cast<std::size_t>(std::clamp(index, 0.0, static_cast<double>(count)));
   };
-  const std::size_t col_begin = clamp_index(
-      std::ceil((bounds.x_min - geo.x_left) / geo.cell_width - kForgive), geo.columns);
-  const std::size_t col_end = clamp_index(
-      std::floor((bounds.x_max - geo.x_left) / geo.cell_width + kForgive), geo.columns);
-  const std::size_t row_begin = clamp_index(
-      std::ceil((geo.y_top - bounds.y_max) / geo.cell_height - kForgive), geo.rows);
-  const std::size_t row_end = clamp_index(
-      std::floor((geo.y_top - bounds.y_min) / geo.cell_height + kForgive), geo.rows);
+  const std::size_t col_begin =
+      clamp_index(std::ceil((bounds.x_min - geo.x_left) / geo.cell_width - kForgive), geo.columns);
+  const std::size_t col_end =
+      clamp_index(std::floor((bounds.x_max - geo.x_left) / geo.cell_width + kForgive), geo.columns);
+  const std::size_t row_begin =
+      clamp_index(std::ceil((geo.y_top - bounds.y_max) / geo.cell_height - kForgive), geo.rows);
+  const std::size_t row_end =
+      clamp_index(std::floor((geo.y_top - bounds.y_min) / geo.cell_height + kForgive), geo.rows);
   if (col_end <= col_begin || row_end <= row_begin) {
     throw ScenarioError(g.bounds ? "/output/grid" : "/domain",
                         "bounds " + describe_box(bounds) + " holding no whole bed raster cell (" +

@@ -52,7 +52,8 @@ const std::string kSeconds = "seconds";
 
 // An interval-generated output list (or series) longer than this is surely a typo.
 constexpr double kMaxOutputTimes = 1e6;
-// Each written grid field of this many cells takes gigabytes.
+// Each written grid field of this many cells takes gigabytes; a finer grid is surely a typo,
+// better reported here than by the allocator.
 constexpr double kMaxGridCells = 1e9;
 
 // ---------------------------------------------------------------------------------------------
@@ -450,10 +451,10 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
     if (inside) continue;
     const std::string which =
         vertex_paths || poly.size() == 1 ? "" : " (vertex " + std::to_string(i) + ")";
-    throw ScenarioError(vertex_paths ? element_path(path, i) : path,
-                        "the point " + fmt(p) + which + " outside the domain " +
-                            describe_box(domain),
-                        what + " inside the domain");
+    throw ScenarioError(
+        vertex_paths ? element_path(path, i) : path,
+        "the point " + fmt(p) + which + " outside the domain " + describe_box(domain),
+        what + " inside the domain");
   }
 }
 
@@ -627,9 +628,8 @@ ParsedWater read_water(const json& v, const std::string& path,
   } else {
     forbid(o, "surface_elevation", form, with_fill);
     w.polygon = read_shape(o, true, domain).value_or(std::vector<Point>{});
-    w.depth = DepthRaster{
-        RasterSpec{file_path(o, "depth_raster", "a raster of water depths (metres)", base_dir),
-                   crs_text(o)}};
+    w.depth = DepthRaster{RasterSpec{
+        file_path(o, "depth_raster", "a raster of water depths (metres)", base_dir), crs_text(o)}};
   }
   if (form != "depth") w.min_depth_m = non_negative(o, "min_depth", kMetres, w.min_depth_m);
   if (const json* velocity = o.find("velocity")) {
@@ -846,8 +846,8 @@ Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
                  {"name", "line", "hydrograph", "hydrograph_csv", "spacing", "depth", "direction"},
                  "an object with a \"line\" and a \"hydrograph\" or \"hydrograph_csv\"");
   Inflow in;
-  in.name = optional_string(o, "name", "a non-empty string")
-                .value_or("inflow " + std::to_string(index));
+  in.name =
+      optional_string(o, "name", "a non-empty string").value_or("inflow " + std::to_string(index));
   if (in.name.empty()) {
     throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
   }
@@ -865,7 +865,8 @@ Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
   const std::string one_source = "exactly one of \"hydrograph\" or \"hydrograph_csv\"";
   const json* table = o.find("hydrograph");
   const json* csv = o.find("hydrograph_csv");
-  if (table && csv) throw ScenarioError(path, "both \"hydrograph\" and \"hydrograph_csv\"", one_source);
+  if (table && csv)
+    throw ScenarioError(path, "both \"hydrograph\" and \"hydrograph_csv\"", one_source);
   if (!table && !csv) {
     throw ScenarioError(path, "neither \"hydrograph\" nor \"hydrograph_csv\"", one_source);
   }
@@ -898,10 +899,10 @@ Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
     const double cosine = (d[0] * along_x + d[1] * along_y) / (norm * length);
     if (std::abs(cosine) > 1e-9) {
       const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
-      throw ScenarioError(o.path("direction"),
-                          "[" + fmt(d[0]) + ", " + fmt(d[1]) + "], at " + fmt(degrees) +
-                              " degrees to the line",
-                          expected);
+      throw ScenarioError(
+          o.path("direction"),
+          "[" + fmt(d[0]) + ", " + fmt(d[1]) + "], at " + fmt(degrees) + " degrees to the line",
+          expected);
     }
     in.direction = d;
   }
@@ -919,10 +920,10 @@ std::vector<Inflow> read_inflows(const json* v, const std::vector<WaterBody>& wa
     // Names tell the inflows apart in the run's report.
     for (std::size_t k = 0; k < out.size(); ++k) {
       if (out[k].name != in.name) continue;
-      throw ScenarioError(member_path(element_path(path, i), "name"),
-                          "the name " + literal(in.name) + " again (inflow " + std::to_string(k) +
-                              " has it)",
-                          "a name no other inflow has");
+      throw ScenarioError(
+          member_path(element_path(path, i), "name"),
+          "the name " + literal(in.name) + " again (inflow " + std::to_string(k) + " has it)",
+          "a name no other inflow has");
     }
     out.push_back(std::move(in));
   }
@@ -938,7 +939,8 @@ std::vector<Outflow> read_outflows(const json* v) {
     const Object o((*v)[i], element_path(path, i), {"line"}, "an object with a \"line\"");
     const json* line = o.find("line");
     if (line == nullptr) {
-      throw ScenarioError(o.path("line"), kMissing, "an array of at least 2 [x, y] points (metres)");
+      throw ScenarioError(o.path("line"), kMissing,
+                          "an array of at least 2 [x, y] points (metres)");
     }
     Outflow outflow{points(*line, o.path("line"), 2)};
     check_distinct_neighbours(outflow.line, o.path("line"), false);
@@ -969,10 +971,10 @@ void check_crs_keys(const Scenario& s) {
                           "with bed.crs)");
     }
     if (crs != given.front().second) {
-      throw ScenarioError(path,
-                          literal(crs) + " while " + given.front().first + " is " +
-                              literal(given.front().second),
-                          "the same CRS for every raster (the scene has one CRS)");
+      throw ScenarioError(
+          path,
+          literal(crs) + " while " + given.front().first + " is " + literal(given.front().second),
+          "the same CRS for every raster (the scene has one CRS)");
     }
   }
 }
@@ -1033,11 +1035,9 @@ std::vector<double> read_times(const Object& o, double end_time) {
   return out;
 }
 
-// Each written grid field of more cells than kMaxGridCells takes gigabytes; a finer grid is
-// surely a typo, better reported here than by the allocator.
 void check_grid_cells(double spacing_m, const Rectangle& bounds, const std::string& path) {
-  const double cells = ((bounds.x_max - bounds.x_min) / spacing_m) *
-                       ((bounds.y_max - bounds.y_min) / spacing_m);
+  const double cells =
+      ((bounds.x_max - bounds.x_min) / spacing_m) * ((bounds.y_max - bounds.y_min) / spacing_m);
   if (cells > kMaxGridCells) {
     throw ScenarioError(path, fmt(spacing_m) + ", giving about " + fmt(std::ceil(cells)) + " cells",
                         "a spacing giving at most " + fmt(kMaxGridCells) + " grid cells (metres)");
@@ -1098,18 +1098,18 @@ std::vector<Gauge> read_gauges(const json* v, const std::string& path) {
     const Object o((*v)[i], element_path(path, i), {"name", "x", "y"},
                    "an object with x, y and optionally a name");
     Gauge g;
-    g.name = optional_string(o, "name", "a non-empty string")
-                 .value_or("gauge " + std::to_string(i));
+    g.name =
+        optional_string(o, "name", "a non-empty string").value_or("gauge " + std::to_string(i));
     if (g.name.empty()) {
       throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
     }
     // The name is the gauge's id in the output file.
     for (std::size_t k = 0; k < out.size(); ++k) {
       if (out[k].name != g.name) continue;
-      throw ScenarioError(o.path("name"),
-                          "the name " + literal(g.name) + " again (gauge " + std::to_string(k) +
-                              " has it)",
-                          "a name no other gauge has");
+      throw ScenarioError(
+          o.path("name"),
+          "the name " + literal(g.name) + " again (gauge " + std::to_string(k) + " has it)",
+          "a name no other gauge has");
     }
     g.position_m = {number(o, "x", "a number (metres)"), number(o, "y", "a number (metres)")};
     out.push_back(std::move(g));
@@ -1119,10 +1119,10 @@ std::vector<Gauge> read_gauges(const json* v, const std::string& path) {
 
 Output read_output(const json* v, const Scenario& scene, const std::filesystem::path& base_dir) {
   const std::string path = "/output";
-  const Object o(v ? *v : empty_object(), path,
-                 {"path", "times", "interval", "grid", "particles", "gauges", "series_interval",
-                  "wet_depth"},
-                 "an object");
+  const Object o(
+      v ? *v : empty_object(), path,
+      {"path", "times", "interval", "grid", "particles", "gauges", "series_interval", "wet_depth"},
+      "an object");
   Output out;
   out.path = read_output_path(o, scene.name, base_dir);
   out.times_s = read_times(o, scene.end_time_s);
@@ -1132,10 +1132,11 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
   // 500 samples draw smooth gauge curves and time the flood to a fifth of a percent of the run.
   out.series_interval_s = positive(o, "series_interval", kSeconds, scene.end_time_s / 500.0);
   if (scene.end_time_s / out.series_interval_s > kMaxOutputTimes) {
-    throw ScenarioError(o.path("series_interval"),
-                        describe(*o.find("series_interval")) + ", giving " +
-                            fmt(scene.end_time_s / out.series_interval_s) + " samples",
-                        "an interval giving at most " + fmt(kMaxOutputTimes) + " samples (seconds)");
+    throw ScenarioError(
+        o.path("series_interval"),
+        describe(*o.find("series_interval")) + ", giving " +
+            fmt(scene.end_time_s / out.series_interval_s) + " samples",
+        "an interval giving at most " + fmt(kMaxOutputTimes) + " samples (seconds)");
   }
   out.wet_depth_m = non_negative(o, "wet_depth", kMetres, out.wet_depth_m);
   return out;
@@ -1154,8 +1155,8 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
                  "an inflow line lying");
   }
   for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
-    check_inside({scene.output.gauges[i].position_m}, domain,
-                 element_path("/output/gauges", i), false, "a gauge");
+    check_inside({scene.output.gauges[i].position_m}, domain, element_path("/output/gauges", i),
+                 false, "a gauge");
   }
   const GridSpec& grid = scene.output.grid;
   if (grid.spacing_m && !grid.bounds) {
@@ -1293,8 +1294,9 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
     s.domain_from_bed = true;  // checked against the water, inflows and gauges by build
   } else {
     throw ScenarioError(o.path("domain"), kMissing,
-                        kBoxExpected + "; only a raster bed, whose extent it then is, lets it be "
-                                       "left out");
+                        kBoxExpected +
+                            "; only a raster bed, whose extent it then is, lets it be "
+                            "left out");
   }
 
   const bool has_bed = !std::holds_alternative<std::monostate>(s.bed);

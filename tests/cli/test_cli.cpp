@@ -181,8 +181,7 @@ void write_bowl(const fs::path& path) {
 
 std::unique_ptr<GDALDataset> open_raster(const std::string& name) {
   GDALAllRegister();
-  return std::unique_ptr<GDALDataset>(
-      GDALDataset::FromHandle(GDALOpen(name.c_str(), GA_ReadOnly)));
+  return std::unique_ptr<GDALDataset>(GDALDataset::FromHandle(GDALOpen(name.c_str(), GA_ReadOnly)));
 }
 
 }  // namespace
@@ -266,11 +265,11 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
   }
 
   SECTION("xarray opens it") {
-    const auto python = run(
-        "/usr/bin/python3 -c 'import sys, xarray; ds = xarray.open_dataset(sys.argv[1]); "
-        "assert ds[\"max_depth\"].dims == (\"y\", \"x\"); "
-        "assert list(ds[\"gauge_name\"].values) == [\"centre\", \"bank\"]' " +
-        out.string());
+    const auto python =
+        run("/usr/bin/python3 -c 'import sys, xarray; ds = xarray.open_dataset(sys.argv[1]); "
+            "assert ds[\"max_depth\"].dims == (\"y\", \"x\"); "
+            "assert list(ds[\"gauge_name\"].values) == [\"centre\", \"bank\"]' " +
+            out.string());
     INFO(python.output);
     CHECK(python.status == 0);
   }

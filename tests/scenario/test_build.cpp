@@ -307,8 +307,7 @@ TEST_CASE("rasters that do not fit the scene are errors at the key that named th
     CHECK(path == "/output/gauges/0");
   }
   SECTION("a Manning's n map with zero roughness, or with gaps") {
-    write_raster(dir.path(), "n0.tif",
-                 [](double x, double) { return x > 500200 ? 0.0 : 0.03; });
+    write_raster(dir.path(), "n0.tif", [](double x, double) { return x > 500200 ? 0.0 : 0.03; });
     json j = lake_scene();
     j["friction"] = {{"manning_n_raster", "n0.tif"}};
     CHECK_THAT(build_error(dir, j, &path), Contains("Manning's n = 0 in the cell centred at"));
@@ -321,7 +320,8 @@ TEST_CASE("rasters that do not fit the scene are errors at the key that named th
     CHECK(path == "/friction/manning_n_raster");
   }
   SECTION("a roughness raster without a CRS in a scene with one") {
-    write_raster(dir.path(), "local.tif", [](double, double) { return 0.03; }, "");
+    write_raster(
+        dir.path(), "local.tif", [](double, double) { return 0.03; }, "");
     json j = lake_scene();
     j["friction"] = {{"manning_n_raster", "local.tif"}};
     CHECK_THAT(build_error(dir, j, &path), Contains("has no CRS"));

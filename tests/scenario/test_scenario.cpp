@@ -390,7 +390,7 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.output.times_s == std::vector<double>{0.5});
   REQUIRE(s.output.grid.spacing_m.has_value());
   CHECK(*s.output.grid.spacing_m == Approx(0.02));  // half the finer of 0.1 and 0.04
-  CHECK_FALSE(s.output.grid.bounds.has_value());     // the domain
+  CHECK_FALSE(s.output.grid.bounds.has_value());    // the domain
   CHECK_FALSE(s.domain_from_bed);
   CHECK(s.water[0].volumes == VolumeRule::geometric);
   CHECK(s.inflows.empty());
@@ -626,8 +626,8 @@ std::vector<Broken> broken_terrain_scenes() {
        "found 5, expected a path"},
       {"raster and plane", with_key("bed", R"({"raster": "a.tif", "plane": {}})"), "/bed",
        "found both \"plane\" and \"raster\""},
-      {"crs with a plane bed", with_key("bed", R"({"plane": {}, "crs": "EPSG:32616"})"),
-       "/bed/crs", "no \"crs\" here (it goes with a \"raster\" bed)"},
+      {"crs with a plane bed", with_key("bed", R"({"plane": {}, "crs": "EPSG:32616"})"), "/bed/crs",
+       "no \"crs\" here (it goes with a \"raster\" bed)"},
       {"empty crs", with_key("bed", R"({"raster": "a.tif", "crs": ""})"), "/bed/crs",
        "expected a projected CRS in metres"},
       {"no domain without a raster bed", edited([](json& s) { s.erase("domain"); }), "/domain",
@@ -661,12 +661,12 @@ std::vector<Broken> broken_terrain_scenes() {
          s["water"][0]["polygon"] = {{500100, 4000100}, {500200, 4000100}, {500200, 4000200}};
        }),
        "/water/0/polygon", "with \"fill\" the shape goes inside it"},
-      {"fill without a surface", raster_edited([](json& s) {
-         s["water"][0].erase("surface_elevation");
-       }),
+      {"fill without a surface",
+       raster_edited([](json& s) { s["water"][0].erase("surface_elevation"); }),
        "/water/0/surface_elevation", "found nothing (key missing), expected a number (metres"},
-      {"fill without a shape", raster_edited([](json& s) { s["water"][0]["fill"] = json::object(); }),
-       "/water/0/fill", "neither \"rectangle\" nor \"polygon\""},
+      {"fill without a shape",
+       raster_edited([](json& s) { s["water"][0]["fill"] = json::object(); }), "/water/0/fill",
+       "neither \"rectangle\" nor \"polygon\""},
       {"fill outside the domain", edited([](json& s) {
          s["bed"] = {{"plane", json::object()}};
          s["water"][0] = {{"fill", {{"polygon", {{0, 0}, {12, 0}, {1, 1}}}}},
@@ -681,12 +681,12 @@ std::vector<Broken> broken_terrain_scenes() {
       {"misspelt volume rule", raster_edited([](json& s) { s["water"][0]["volumes"] = "balance"; }),
        "/water/0/volumes", "one of \"geometric\", \"balanced\" (did you mean \"balanced\"?)"},
       {"geometric beside balanced", raster_edited([](json& s) {
-         s["water"].push_back({{"rectangle",
-                                {{"x_min", 500000}, {"x_max", 500050}, {"y_min", 4000000},
-                                 {"y_max", 4000050}}},
-                               {"depth", 1},
-                               {"spacing", 10},
-                               {"volumes", "geometric"}});
+         s["water"].push_back(
+             {{"rectangle",
+               {{"x_min", 500000}, {"x_max", 500050}, {"y_min", 4000000}, {"y_max", 4000050}}},
+              {"depth", 1},
+              {"spacing", 10},
+              {"volumes", "geometric"}});
        }),
        "/water/1/volumes", "found \"geometric\" while /water/0 is balanced"},
       {"depth raster with a surface", edited([](json& s) {
@@ -766,24 +766,30 @@ std::vector<Broken> broken_terrain_scenes() {
       {"gauge outside the domain", edited([](json& s) {
          s["output"] = {{"gauges", {{{"name", "a"}, {"x", 20}, {"y", 0.5}}}}};
        }),
-       "/output/gauges/0", "found the point (20, 0.5) outside the domain [0, 10] x [0, 1], "
-                           "expected a gauge inside the domain"},
+       "/output/gauges/0",
+       "found the point (20, 0.5) outside the domain [0, 10] x [0, 1], "
+       "expected a gauge inside the domain"},
       {"two gauges of one name", edited([](json& s) {
-         s["output"] = {{"gauges",
-                         {{{"name", "a"}, {"x", 1}, {"y", 0.5}}, {{"name", "a"}, {"x", 2}, {"y", 0.5}}}}};
+         s["output"] = {
+             {"gauges",
+              {{{"name", "a"}, {"x", 1}, {"y", 0.5}}, {{"name", "a"}, {"x", 2}, {"y", 0.5}}}}};
        }),
        "/output/gauges/1/name", "the name \"a\" again (gauge 0 has it)"},
       {"gauge without x", edited([](json& s) {
          s["output"] = {{"gauges", {{{"name", "a"}, {"y", 0.5}}}}};
        }),
        "/output/gauges/0/x", "found nothing (key missing), expected a number (metres)"},
-      {"zero series interval", edited([](json& s) { s["output"] = {{"series_interval", 0}}; }),
+      {"zero series interval", edited([](json& s) {
+         s["output"] = {{"series_interval", 0}};
+       }),
        "/output/series_interval", "found 0, expected a number > 0 (seconds)"},
       {"series interval far too short", edited([](json& s) {
          s["output"] = {{"series_interval", 1e-9}};
        }),
        "/output/series_interval", "expected an interval giving at most 1000000 samples"},
-      {"negative wet depth", edited([](json& s) { s["output"] = {{"wet_depth", -0.01}}; }),
+      {"negative wet depth", edited([](json& s) {
+         s["output"] = {{"wet_depth", -0.01}};
+       }),
        "/output/wet_depth", "found -0.01, expected a number >= 0 (metres)"},
   };
 }

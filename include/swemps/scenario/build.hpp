@@ -18,8 +18,8 @@ namespace swemps::scenario {
 
 // What the scene's files say about the ground, with the domain they settle.
 struct Terrain {
-  Rectangle domain;  // as given, or the bed raster's extent
-  std::shared_ptr<const swe::BedSource> bed;               // null: flat at z = 0
+  Rectangle domain;                                         // as given, or the bed raster's extent
+  std::shared_ptr<const swe::BedSource> bed;                // null: flat at z = 0
   std::shared_ptr<const terrain::GriddedField> bed_raster;  // raster beds only
   std::shared_ptr<const terrain::GriddedField> roughness;   // Manning's n map only
   // Per water body, the depth raster it names; null for the other bodies.

@@ -143,7 +143,7 @@ struct Scenario {
   std::vector<WaterBody> water;  // may be empty when there are inflows
   std::vector<Wall> walls;
   BedSpec bed;
-  std::optional<ManningSpec> manning_n;  // absent: no friction
+  std::optional<ManningSpec> manning_n;                   // absent: no friction
   std::optional<splitting::SplittingSettings> splitting;  // absent: no splitting
   std::vector<Inflow> inflows;
   std::vector<Outflow> outflows;

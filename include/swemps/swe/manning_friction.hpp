@@ -32,7 +32,7 @@ class ManningFriction final : public Effect {
   void apply(StepContext& context) override;
 
  private:
-  double manning_n_ = 0.0;                           // used when roughness_ is null
+  double manning_n_ = 0.0;  // used when roughness_ is null
   std::shared_ptr<const RoughnessSource> roughness_;
 };
 
