@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_dir.hpp"
 #include "swemps/io/netcdf_writer.hpp"
 #include "swemps/maps/flood_statistics.hpp"
 #include "swemps/particles/swe_particles.hpp"
@@ -34,31 +35,11 @@ using swemps::io::RunMetadata;
 using swemps::maps::FloodStatistics;
 using swemps::particles::SweParticles;
 
+using TempDir = swemps::testing::TempDir;
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// A fresh folder per test case, removed afterwards, so parallel test runs never collide.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    dir_ = fs::temp_directory_path() /
-           ("swemps-netcdf-test-" + std::to_string(stamp) + "-" + std::to_string(rd()));
-    fs::create_directories(dir_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return dir_; }
-
- private:
-  fs::path dir_;
-};
 
 fs::path partial_of(const fs::path& p) {
   fs::path q = p;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_dir.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 
@@ -24,29 +25,9 @@ using swemps::io::write_geotiff;
 using swemps::terrain::GriddedField;
 using swemps::terrain::GridGeometry;
 
+using TempDir = swemps::testing::TempDir;
+
 namespace {
-
-// A fresh folder per test case, removed afterwards, so parallel test runs never collide.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    dir_ = fs::temp_directory_path() /
-           ("swemps-raster-test-" + std::to_string(stamp) + "-" + std::to_string(rd()));
-    fs::create_directories(dir_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return dir_; }
-
- private:
-  fs::path dir_;
-};
 
 std::string wkt_of(const std::string& user_input) {
   OGRSpatialReference crs;

@@ -19,11 +19,14 @@
 #include <string>
 #include <vector>
 
+#include "../support/temp_dir.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/swe/manning_friction.hpp"
 #include "swemps/terrain/gridded_field.hpp"
+
+using TempDir = swemps::testing::TempDir;
 
 namespace {
 
@@ -33,27 +36,6 @@ using nlohmann::json;
 using swemps::scenario::ScenarioError;
 using swemps::terrain::GriddedField;
 using swemps::terrain::GridGeometry;
-
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    const auto stamp = std::chrono::steady_clock::now().time_since_epoch().count();
-    dir_ = fs::temp_directory_path() /
-           ("swemps-build-test-" + std::to_string(stamp) + "-" + std::to_string(rd()));
-    fs::create_directories(dir_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  const fs::path& path() const { return dir_; }
-
- private:
-  fs::path dir_;
-};
 
 std::string wkt_of(const std::string& user_input) {
   OGRSpatialReference crs;
