@@ -18,6 +18,7 @@
 #include "swemps/particles/seeding.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/bed_slope.hpp"
+#include "swemps/swe/eddy_viscosity.hpp"
 #include "swemps/swe/manning_friction.hpp"
 
 namespace swemps::scenario {
@@ -413,6 +414,10 @@ BuiltScene build(const Scenario& scene) {
   const bool level = plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0;
   if (terrain.bed && !level) {
     effects.push_back(std::make_unique<swe::BedSlope>(terrain.bed, scene.numerics.gradient));
+  }
+  // A force: it acts with the depth gradient and the bed slope, before friction (velocity stage).
+  if (scene.eddy_viscosity_m2_s) {
+    effects.push_back(std::make_unique<swe::EddyViscosity>(*scene.eddy_viscosity_m2_s));
   }
   if (terrain.roughness) {
     effects.push_back(std::make_unique<swe::ManningFriction>(

@@ -461,9 +461,11 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
 // ---------------------------------------------------------------------------------------------
 // Sections of the scene
 
-swe::Settings read_numerics(const json* v, double gravity) {
+swe::Settings read_numerics(const json* v, double gravity, std::optional<double>& eddy_viscosity) {
   const Object o(v ? *v : empty_object(), "/numerics",
-                 {"cfl", "alpha_e", "gradient", "min_time_step"}, "an object");
+                 {"cfl", "alpha_e", "max_area_ratio", "gradient", "min_time_step",
+                  "eddy_viscosity"},
+                 "an object");
   swe::Settings s;
   s.gravity_m_s2 = gravity;
   s.cfl = bounded(o, "cfl", 0.0, true, 1.0, "the Courant number", s.cfl);
@@ -471,10 +473,15 @@ swe::Settings read_numerics(const json* v, double gravity) {
   // is so wide that the answer no longer resolves the flow. Either is surely a mistake.
   s.alpha_e = bounded(o, "alpha_e", 1.0, false, 3.0,
                       "support radius r_e = alpha_e sqrt(A_max), in particle sizes", s.alpha_e);
-  const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
+  // Below 1 the bound would cut the areas of water that has merely thinned a little.
+  s.max_area_ratio = bounded(o, "max_area_ratio", 1.0, false, 100.0,
+                             "the largest area eq 9 counts, in multiples of A_0", s.max_area_ratio);  const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
   s.gradient =
       gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;
   s.min_time_step_s = positive(o, "min_time_step", kSeconds, s.min_time_step_s);
+  if (o.find("eddy_viscosity") != nullptr) {
+    eddy_viscosity = positive(o, "eddy_viscosity", "m^2/s");
+  }
   return s;
 }
 
@@ -1281,7 +1288,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
 
   const double gravity = positive(o, "gravity", "m/s^2", swe::Settings{}.gravity_m_s2);
   s.end_time_s = positive(o, "end_time", kSeconds);
-  s.numerics = read_numerics(o.find("numerics"), gravity);
+  s.numerics = read_numerics(o.find("numerics"), gravity, s.eddy_viscosity_m2_s);
 
   // The bed comes first: a raster bed may give the domain, and water filled to a level needs
   // a bed to fill.

@@ -19,11 +19,19 @@ inline double distance(double dx, double dy) { return std::sqrt(dx * dx + dy * d
 
 }  // namespace
 
-double influence_radius(const SweParticles& p, double alpha_e) {
-  double largest_area = 0.0;
-  for (std::size_t i = 0; i < p.fluid_count(); ++i)
-    largest_area = std::max(largest_area, p.area[i]);
-  return alpha_e * std::sqrt(largest_area);
+double influence_radius(const SweParticles& p, double alpha_e, double max_area_ratio,
+                        double isolated_area) {
+  // eq 7 gives an isolated particle exactly A = 1 / w(0); a relative margin absorbs the
+  // rounding of V / (V w(0)).
+  const double isolated_from = isolated_area * (1.0 - 1e-9);
+  double largest_connected = 0.0;
+  double largest_any = 0.0;
+  for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+    const double bounded = std::min(p.area[i], max_area_ratio * p.initial_area[i]);
+    largest_any = std::max(largest_any, bounded);
+    if (p.area[i] < isolated_from) largest_connected = std::max(largest_connected, bounded);
+  }
+  return alpha_e * std::sqrt(largest_connected > 0.0 ? largest_connected : largest_any);
 }
 
 void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w) {

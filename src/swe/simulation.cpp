@@ -38,7 +38,11 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
       effect_seconds_(effects_.size(), 0.0),
       // Before the first summation the areas are the lattice areas A_0. A run that starts dry
       // (all its water comes through an inflow) has no radius yet; 1 m stands in, unused.
-      kernel_(particles_.fluid_count() > 0 ? influence_radius(particles_, settings.alpha_e) : 1.0) {
+      // No summation has run yet, so no particle is known to be isolated.
+      kernel_(particles_.fluid_count() > 0
+                  ? influence_radius(particles_, settings.alpha_e, settings.max_area_ratio,
+                                     std::numeric_limits<double>::infinity())
+                  : 1.0) {
   if (particles_.fluid_count() == 0 && effects_.empty())
     throw std::invalid_argument("simulation: no water particles and nothing to add any");
   if (particles_.ghost_count() != 0)
@@ -135,7 +139,8 @@ void Simulation::update_fields() {
   if (particles_.fluid_count() == 0) return;  // dry so far: nothing to sum
   // eq 9 with the areas of the previous summation: the radius must be known before the
   // neighbours (and so the new areas) can be found.
-  kernel_ = Kernel(influence_radius(particles_, settings_.alpha_e));
+  kernel_ = Kernel(influence_radius(particles_, settings_.alpha_e, settings_.max_area_ratio,
+                                    1.0 / kernel_.w(0.0)));
   sort_by_cell();
   {
     ScopedTimer timer(phase_times_.walls);

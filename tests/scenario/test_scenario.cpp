@@ -69,7 +69,7 @@ std::vector<Broken> broken_scenes() {
       {"unrelated unknown key", edited([](json& s) {
          s["numerics"] = {{"zzzzzz", 1}};
        }),
-       "/numerics/zzzzzz", "one of the keys cfl, alpha_e, gradient, min_time_step"},
+       "/numerics/zzzzzz", "one of the keys cfl, alpha_e, max_area_ratio, gradient, min_time_step, eddy_viscosity"},
       {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
        "found nothing (key missing), expected a number > 0 (seconds)"},
       {"missing domain", edited([](json& s) { s.erase("domain"); }), "/domain", "key missing"},
@@ -206,6 +206,10 @@ std::vector<Broken> broken_effect_scenes() {
        "/bed/profile_x/2", "strictly increasing"},
       {"profile_x point of wrong length", with_key("bed", R"({"profile_x": [[0, 0], [1, 2, 3]]})"),
        "/bed/profile_x/1", "found an array of 3 elements"},
+      {"eddy viscosity of zero", with_key("numerics", R"({"eddy_viscosity": 0})"),
+       "/numerics/eddy_viscosity", "found 0, expected a number > 0 (m^2/s)"},
+      {"area bound below 1", with_key("numerics", R"({"max_area_ratio": 0.5})"),
+       "/numerics/max_area_ratio", "found 0.5, expected a number in [1, 100]"},
       {"friction as a bare number", with_key("friction", "0.001"), "/friction",
        "found 0.001, expected an object with \"manning_n\""},
       {"friction without manning_n", with_key("friction", "{}"), "/friction/manning_n",
@@ -289,7 +293,8 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
     "description": "a test dam",
     "gravity": 9.8,
     "end_time": 2.0,
-    "numerics": {"cfl": 0.3, "alpha_e": 2.0, "gradient": "mps", "min_time_step": 1e-6},
+    "numerics": {"cfl": 0.3, "alpha_e": 2.0, "gradient": "mps", "min_time_step": 1e-6,
+                 "max_area_ratio": 9, "eddy_viscosity": 0.02},
     "domain": {"x_min": -1, "x_max": 10, "y_min": -2, "y_max": 3},
     "water": [
       {"rectangle": {"x_min": 0, "x_max": 4, "y_min": 0, "y_max": 1},
@@ -338,6 +343,9 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   CHECK(s.water[1].velocity_m_s == std::array<double, 2>{0.0, 0.0});
   CHECK(s.water[1].spacing_m == 0.05);
 
+  CHECK(s.numerics.max_area_ratio == 9.0);
+  REQUIRE(s.eddy_viscosity_m2_s.has_value());
+  CHECK(*s.eddy_viscosity_m2_s == 0.02);
   REQUIRE(s.walls.size() == 2);
   CHECK(s.walls[0].polyline.size() == 2);
   CHECK(s.walls[0].condition == swemps::scenario::WallCondition::no_slip);
@@ -382,6 +390,8 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.numerics.alpha_e == 1.3);
   CHECK(s.numerics.gradient == swemps::swe::GradientVariant::mps);
   CHECK(s.numerics.min_time_step_s == 1e-8);
+  CHECK(s.numerics.max_area_ratio == 4.0);
+  CHECK_FALSE(s.eddy_viscosity_m2_s.has_value());  // no eddy viscosity
   CHECK(s.water[0].velocity_m_s == std::array<double, 2>{0.0, 0.0});
   CHECK(s.walls.empty());
   CHECK(std::holds_alternative<std::monostate>(s.bed));  // flat bed at z = 0

@@ -168,3 +168,47 @@ TEST_CASE("eq 7 on a lattice and the gridded depth", "[swe]") {
   for (double d : depth) integral += d * dx * dx;
   CHECK(integral == Approx(volume).epsilon(1e-4));
 }
+
+TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]") {
+  // A pool of water at rest in a box, and a droplet in a second box far from it: the
+  // droplet's summed area is 1 / w(0), which grows with r_e. Counted in A_max it would make
+  // r_e grow x1.46 every step.
+  constexpr double spacing = 0.1;
+  auto water = block(0, 1, 0, 1, 0.2, spacing);
+  const double a0 = spacing * spacing;
+  const auto two_boxes = [] {
+    const auto first = closed_box(0, 1, 0, 1, boundaries::WallCondition::slip);
+    const auto second = closed_box(7, 9, 0, 1, boundaries::WallCondition::slip);
+    std::vector<boundaries::WallSegment> walls(first.segments().begin(), first.segments().end());
+    walls.insert(walls.end(), second.segments().begin(), second.segments().end());
+    return boundaries::GhostWalls(walls);
+  };
+  const double pool_radius = [&] {
+    swe::Simulation pool(water, {}, two_boxes(), {});
+    pool.advance_to(0.5);
+    return pool.kernel().influence_radius();
+  }();
+  REQUIRE(pool_radius < 1.1 * swe::Settings{}.alpha_e * spacing);  // about the lattice radius
+  SECTION("one droplet does not set the radius") {
+    water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
+    swe::Simulation sim(water, {}, two_boxes(),
+                        {});
+    sim.advance_to(0.5);
+    REQUIRE(sim.steps() > 10);
+    CHECK(sim.kernel().influence_radius() == Approx(pool_radius).epsilon(1e-12));
+  }
+  SECTION("a pair of droplets cannot grow the radius past the bound") {
+    // Two particles: A = 1 / (w(0) + w(d)) tends to r_e^2 / 2.5 as r_e grows, and
+    // alpha_e^2 / 2.5 > 1 feeds r_e without end. The A_0 bound stops it.
+    water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
+    water.add_fluid(8.0, 0.6, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
+    swe::Settings settings;
+    swe::Simulation sim(water, settings,
+                        two_boxes(), {});
+    sim.advance_to(0.5);
+    REQUIRE(sim.steps() > 10);
+    const double bound = settings.alpha_e * std::sqrt(settings.max_area_ratio * a0);
+    CHECK(sim.kernel().influence_radius() <= bound * (1 + 1e-12));
+    CHECK(sim.kernel().influence_radius() > pool_radius);
+  }
+}

@@ -136,6 +136,7 @@ struct Scenario {
   std::string description;
   double end_time_s = 0.0;
   swe::Settings numerics;
+  std::optional<double> eddy_viscosity_m2_s;  // numerics.eddy_viscosity; absent: none
   // Particles leaving it are removed and their volume booked. Left out of the file with a
   // raster bed (domain_from_bed): then all zero here, and build takes the raster's extent.
   Rectangle domain;

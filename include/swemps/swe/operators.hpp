@@ -17,8 +17,14 @@ namespace swemps::swe {
 
 using Kernel = kernels::Spiky<2>;
 
-// eq 9: one influence radius for all particles, from the largest fluid area.
-double influence_radius(const particles::SweParticles& p, double alpha_e);
+// eq 9: one influence radius for all particles, from the largest fluid area. Two guards
+// (docs/method.md, "The influence radius"): a particle whose area is `isolated_area`, the
+// area 1 / w(0) that eq 7 gives a particle with no neighbour, does not count, because that
+// area is made by the kernel, not by the water; and each area counts at most
+// max_area_ratio times the particle's creation area A_0. When every particle is isolated,
+// the bounded areas of all of them are used.
+double influence_radius(const particles::SweParticles& p, double alpha_e, double max_area_ratio,
+                        double isolated_area);
 
 // eq 7: h_i = sum_j V_j w_ij including the self term; then A_i = V_i / h_i.
 void sum_depth(particles::SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w);

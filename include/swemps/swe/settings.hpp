@@ -19,6 +19,12 @@ struct Settings {
   double gravity_m_s2 = 9.81;
   double cfl = 0.5;      // eq 13
   double alpha_e = 1.3;  // eq 9: r_e = alpha_e sqrt(A_max)
+  // eq 9's A_max counts a particle's area only up to this multiple of its creation area A_0,
+  // so r_e never exceeds alpha_e sqrt(max_area_ratio A_0). Without a bound, particles with
+  // almost no neighbours feed their kernel-made area back into the radius: an isolated
+  // particle has A = 1 / w(0) = 1.26 r_e^2, so r_e would grow x1.46 every step
+  // (docs/method.md, "The influence radius").
+  double max_area_ratio = 4.0;
   GradientVariant gradient = GradientVariant::mps;
   double min_time_step_s = 1e-8;  // a step below this stops the run: the flow has broken down
 };
