@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "../support/temp_dir.hpp"
+#include "../support/terrain_fixtures.hpp"
 #include "swemps/io/netcdf_writer.hpp"
 #include "swemps/maps/flood_statistics.hpp"
 #include "swemps/particles/swe_particles.hpp"
@@ -218,15 +219,7 @@ Layout layout_of(const Grid& grid, bool particles, std::vector<Gauge> gauges = {
 }
 
 // WKT of a UTM zone, as a caller would take it from its terrain raster.
-std::string utm_wkt(int epsg) {
-  OGRSpatialReference srs;
-  REQUIRE(srs.importFromEPSG(epsg) == OGRERR_NONE);
-  char* text = nullptr;
-  REQUIRE(srs.exportToWkt(&text) == OGRERR_NONE);
-  std::string wkt(text);
-  CPLFree(text);
-  return wkt;
-}
+std::string utm_wkt(int epsg) { return swemps::testing::wkt_of("EPSG:" + std::to_string(epsg)); }
 
 Grid utm_grid() {
   Grid g;

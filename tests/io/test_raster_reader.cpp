@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "../support/temp_dir.hpp"
+#include "../support/terrain_fixtures.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 
@@ -26,18 +27,10 @@ using swemps::terrain::GriddedField;
 using swemps::terrain::GridGeometry;
 
 using TempDir = swemps::testing::TempDir;
+using swemps::testing::grid_geometry;
+using swemps::testing::wkt_of;
 
 namespace {
-
-std::string wkt_of(const std::string& user_input) {
-  OGRSpatialReference crs;
-  REQUIRE(crs.SetFromUserInput(user_input.c_str()) == OGRERR_NONE);
-  char* text = nullptr;
-  crs.exportToWkt(&text);
-  std::string wkt = text;
-  CPLFree(text);
-  return wkt;
-}
 
 bool same_crs(const std::string& wkt, const std::string& user_input) {
   OGRSpatialReference a, b;
@@ -58,13 +51,7 @@ std::string error_of(const RasterRequest& request) {
 
 // A UTM zone 16N field of 6 x 4 cells of 30 m, one of them nodata.
 GriddedField utm_field() {
-  GridGeometry g;
-  g.columns = 6;
-  g.rows = 4;
-  g.x_left = 740000.0;
-  g.y_top = 4060000.0;
-  g.cell_width = 30.0;
-  g.cell_height = 30.0;
+  const GridGeometry g = grid_geometry(6, 4, 740000.0, 4060000.0, 30.0, 30.0);
   std::vector<double> values;
   for (std::size_t k = 0; k < g.columns * g.rows; ++k) values.push_back(300.0 + 1.25 * k);
   values[9] = std::nan("");

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "../support/temp_dir.hpp"
+#include "../support/terrain_fixtures.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
@@ -27,6 +28,7 @@
 #include "swemps/terrain/gridded_field.hpp"
 
 using TempDir = swemps::testing::TempDir;
+using swemps::testing::wkt_of;
 
 namespace {
 
@@ -37,26 +39,9 @@ using swemps::scenario::ScenarioError;
 using swemps::terrain::GriddedField;
 using swemps::terrain::GridGeometry;
 
-std::string wkt_of(const std::string& user_input) {
-  OGRSpatialReference crs;
-  REQUIRE(crs.SetFromUserInput(user_input.c_str()) == OGRERR_NONE);
-  char* text = nullptr;
-  crs.exportToWkt(&text);
-  std::string wkt = text;
-  CPLFree(text);
-  return wkt;
-}
-
 // 30 x 20 cells of 10 m in UTM 16N: x 500000 to 500300, y 4000000 to 4000200.
 GridGeometry small_geometry() {
-  GridGeometry g;
-  g.columns = 30;
-  g.rows = 20;
-  g.x_left = 500000.0;
-  g.y_top = 4000200.0;
-  g.cell_width = 10.0;
-  g.cell_height = 10.0;
-  return g;
+  return swemps::testing::grid_geometry(30, 20, 500000.0, 4000200.0, 10.0, 10.0);
 }
 
 // A bowl around (500150, 4000100), lowest at 300 m, tilted up to the east.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "../support/terrain_fixtures.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 
 using swemps::terrain::GriddedField;
@@ -20,14 +21,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Five columns of 10 m and four rows of 20 m, placed at UTM-sized coordinates so that
 // rounding in the coordinate arithmetic is as large as in a real scene.
 GridGeometry small_geometry() {
-  GridGeometry g;
-  g.columns = 5;
-  g.rows = 4;
-  g.x_left = 500000.0;
-  g.y_top = 4000000.0;
-  g.cell_width = 10.0;
-  g.cell_height = 20.0;
-  return g;
+  return swemps::testing::grid_geometry(5, 4, 500000.0, 4000000.0, 10.0, 20.0);
 }
 
 // z = a + b x + c y, sampled at the cell centres: bilinear interpolation reproduces it.
