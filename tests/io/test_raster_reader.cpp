@@ -66,13 +66,7 @@ double lon_lat_value(double lon, double lat) {
 
 GriddedField lon_lat_field(double lon_west, double lat_north, double step_deg, std::size_t columns,
                            std::size_t rows) {
-  GridGeometry g;
-  g.columns = columns;
-  g.rows = rows;
-  g.x_left = lon_west;
-  g.y_top = lat_north;
-  g.cell_width = step_deg;
-  g.cell_height = step_deg;
+  const GridGeometry g = grid_geometry(columns, rows, lon_west, lat_north, step_deg, step_deg);
   std::vector<double> values;
   for (std::size_t row = 0; row < rows; ++row) {
     for (std::size_t col = 0; col < columns; ++col) {
