@@ -14,6 +14,8 @@ class Spiky {
   static_assert(Dim >= 1 && Dim <= 3, "spiky kernel defined for 1, 2 and 3 dimensions");
 
  public:
+  static constexpr bool singular_at_origin = false;
+
   explicit Spiky(double influence_radius) : influence_radius_(influence_radius) {
     if (!(influence_radius > 0.0) || !std::isfinite(influence_radius)) {
       throw std::invalid_argument("spiky kernel: influence radius must be finite and > 0");

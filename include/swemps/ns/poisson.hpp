@@ -1,0 +1,65 @@
+#pragma once
+// The pressure Poisson equation of semi-implicit MPS (method.md section 3) as a sparse linear
+// system, and its solution by preconditioned conjugate gradients.
+//
+// For each unknown particle i (fluid or wall, not on the free surface)
+//   (2d / (lambda n0)) sum_j (p_j - p_i) w_ij = b_i
+// over its fluid and wall neighbours j (dummies only pad the number density). Free-surface
+// neighbours are Dirichlet (p = 0): they add to the diagonal only. Multiplied by
+// -lambda n0 / 2d the system is A p = -b lambda n0 / 2d with
+//   A_ii = sum_j w_ij,   A_ij = -w_ij (j an unknown),
+// symmetric because w_ij = w_ji, and positive definite because every connected group of
+// unknowns touches the free surface (weakly diagonally dominant, strictly in some row).
+// That is what lets conjugate gradients solve it, rather than the BiCGSTAB that
+// non-symmetric MPS variants need.
+
+#include <Eigen/Sparse>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "swemps/neighbors/neighbor_list.hpp"
+#include "swemps/ns/settings.hpp"
+
+namespace swemps::ns {
+
+struct PoissonSystem {
+  Eigen::SparseMatrix<double, Eigen::RowMajor, int> matrix;
+  Eigen::VectorXd rhs;
+  std::vector<std::uint32_t> particle_of_unknown;  // unknown k is particle particle_of_unknown[k]
+};
+
+// Builds the system. `pairs` is the neighbour list (rows for at least the candidates);
+// `pair_weight[k]` the pressure-kernel weight of pair k of that list; `unknown[i]` marks the
+// particles solved for (only i < candidate_count may be set); `source[i]` is b_i; a neighbour
+// j counts when j < candidate_count (fluid and wall particles come first). `laplacian_factor`
+// is 2d / (lambda n0).
+void assemble_poisson(const neighbors::NeighborList& pairs, std::span<const double> pair_weight,
+                      std::span<const char> unknown, std::span<const double> source,
+                      std::size_t candidate_count, double laplacian_factor, PoissonSystem& out);
+
+struct PoissonReport {
+  int iterations = 0;
+  double relative_residual = 0.0;  // |rhs - A p| / |rhs| as the solver estimates it
+  bool converged = false;
+};
+
+// Conjugate gradients with the chosen preconditioner. Keeps its workspace between calls.
+class PoissonSolver {
+ public:
+  explicit PoissonSolver(const PoissonSettings& settings);
+  ~PoissonSolver();
+  PoissonSolver(PoissonSolver&&) noexcept;
+  PoissonSolver& operator=(PoissonSolver&&) noexcept;
+
+  // Solves system.matrix p = system.rhs starting from `guess` (one value per unknown);
+  // the solution replaces it. A zero right-hand side gives p = 0 at once.
+  PoissonReport solve(const PoissonSystem& system, Eigen::VectorXd& guess);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace swemps::ns
