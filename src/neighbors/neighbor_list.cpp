@@ -1,5 +1,6 @@
 #include "swemps/neighbors/neighbor_list.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "swemps/neighbors/parallel.hpp"
@@ -40,25 +41,33 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   const double radius2 = radius * radius;
   out.offsets.assign(target_count + 1, 0);
 
-  // Calls f(j) for every neighbour j of point i, in the cell list's fixed order.
-  auto for_each_neighbor = [&](std::size_t i, auto&& f) {
+  // One distance pass: each row is written at a slot sized by its candidate count (cheap to
+  // get from the cell ranges), then the rows are packed. Counting first and filling second
+  // would test every candidate distance twice; the list build was the largest cost of a step.
+  std::vector<std::uint32_t> bound(target_count + 1, 0);
+  parallel_for(target_count, [&](std::size_t i) {
+    bound[i + 1] = static_cast<std::uint32_t>(cells.candidate_count(point_at<Dim>(coords, i)));
+  });
+  for (std::size_t i = 0; i < target_count; ++i) bound[i + 1] += bound[i];
+  out.index.resize(bound[target_count]);
+  parallel_for(target_count, [&](std::size_t i) {
+    std::uint32_t* slot = out.index.data() + bound[i];
     const auto p = point_at<Dim>(coords, i);
     cells.for_each_candidate(p, [&](std::uint32_t j) {
-      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) f(j);
+      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) *slot++ = j;
     });
-  };
-  // Two passes (count, then fill) keep the rows contiguous without per-thread buffers.
-  parallel_for(target_count, [&](std::size_t i) {
-    std::uint32_t count = 0;
-    for_each_neighbor(i, [&](std::uint32_t) { ++count; });
-    out.offsets[i + 1] = count;
+    out.offsets[i + 1] = static_cast<std::uint32_t>(slot - (out.index.data() + bound[i]));
   });
-  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
-  out.index.resize(out.offsets[target_count]);
-  parallel_for(target_count, [&](std::size_t i) {
-    std::uint32_t* slot = out.index.data() + out.offsets[i];
-    for_each_neighbor(i, [&](std::uint32_t j) { *slot++ = j; });
-  });
+  // Pack: rows move only towards the front, in order, so a forward copy is safe.
+  std::uint32_t packed = 0;
+  for (std::size_t i = 0; i < target_count; ++i) {
+    const std::uint32_t count = out.offsets[i + 1];
+    std::copy_n(out.index.data() + bound[i], count, out.index.data() + packed);
+    out.offsets[i] = packed;
+    packed += count;
+  }
+  out.offsets[target_count] = packed;
+  out.index.resize(packed);
 }
 
 template <int Dim>

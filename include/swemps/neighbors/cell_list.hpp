@@ -30,10 +30,30 @@ class CellList {
   // Point indices sorted by cell (row-major cell order, x fastest).
   std::span<const std::uint32_t> order() const { return order_; }
 
+  // How many points for_each_candidate(point, ...) visits, without visiting them.
+  std::size_t candidate_count(const std::array<double, Dim>& point) const {
+    std::size_t count = 0;
+    for_each_cell_run(point, [&](std::int64_t first_cell, std::int64_t last_cell) {
+      count += cell_start_[static_cast<std::size_t>(last_cell) + 1] -
+               cell_start_[static_cast<std::size_t>(first_cell)];
+    });
+    return count;
+  }
+
   // Calls f(j) for every point j in the cells around `point` (a superset of the points
   // within cell_width() of it), in a fixed order.
   template <class F>
   void for_each_candidate(const std::array<double, Dim>& point, F&& f) const {
+    for_each_cell_run(point, [&](std::int64_t first_cell, std::int64_t last_cell) {
+      visit_cells(first_cell, last_cell, f);
+    });
+  }
+
+ private:
+  // Calls run(first, last) for each run of consecutive cells (a row of up to three) that
+  // makes up the 3^Dim block around `point`'s cell, clipped to the grid.
+  template <class Run>
+  void for_each_cell_run(const std::array<double, Dim>& point, Run&& run) const {
     std::array<std::int64_t, Dim> c{};
     for (int d = 0; d < Dim; ++d) c[d] = cell_coordinate(point[d], d);
     std::array<std::int64_t, Dim> lo{}, hi{};
@@ -43,22 +63,21 @@ class CellList {
       if (lo[d] > hi[d]) return;  // point far outside the binned box: no candidates
     }
     if constexpr (Dim == 1) {
-      visit_cells(lo[0], hi[0], f);
+      run(lo[0], hi[0]);
     } else if constexpr (Dim == 2) {
       for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
         const std::int64_t row = cy * cells_[0];
-        visit_cells(row + lo[0], row + hi[0], f);
+        run(row + lo[0], row + hi[0]);
       }
     } else {
       for (std::int64_t cz = lo[2]; cz <= hi[2]; ++cz)
         for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
           const std::int64_t row = (cz * cells_[1] + cy) * cells_[0];
-          visit_cells(row + lo[0], row + hi[0], f);
+          run(row + lo[0], row + hi[0]);
         }
     }
   }
 
- private:
   // Cells of a row are contiguous in order_, so a run of cells is one contiguous range.
   template <class F>
   void visit_cells(std::int64_t first_cell, std::int64_t last_cell, F& f) const {
