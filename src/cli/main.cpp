@@ -10,6 +10,7 @@
 
 #include "swemps/cli/options.hpp"
 #include "swemps/cli/run_command.hpp"
+#include "swemps/ns/simulation.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/swe/simulation.hpp"
 
@@ -61,6 +62,8 @@ int main(int argc, char** argv) {
   } catch (const swemps::scenario::ScenarioError& e) {
     return fail(exit_input, e.what());
   } catch (const swemps::swe::SimulationError& e) {
+    return fail(exit_breakdown, std::string("the simulation broke down: ") + e.what());
+  } catch (const swemps::ns::SimulationError& e) {
     return fail(exit_breakdown, std::string("the simulation broke down: ") + e.what());
   } catch (const OutputError& e) {
     return fail(exit_output, std::string("cannot write output: ") + e.what());

@@ -9,10 +9,19 @@ std::string usage_text() {
 
 Usage:
   swe-mps run SCENARIO.json [options]
+  swe-mps compare SCENARIO.json [options]
   swe-mps --help | --version
 
+Commands:
+  run       run the scene with its model: shallow water, or Navier-Stokes ("model": "ns")
+  compare   run the scene as shallow water and as 3D Navier-Stokes (its "ns" block) and
+            write both maps, the Navier-Stokes series and both surge fronts beside
+            Ritter's: STEM.swe.nc, STEM.ns.nc, STEM.ns.series.csv, STEM.fronts.csv
+
 Options:
-  -o, --output FILE   write the netCDF result to FILE instead of the scene's output.path
+  -o, --output PATH   run: write the netCDF result to PATH instead of the scene's
+                      output.path; compare: the STEM of its files (default: output.path
+                      without its extension)
   -t, --threads N     OpenMP threads (default: all cores; results do not depend on N)
   -q, --quiet         warnings and errors only, no progress
   -v, --verbose       debug messages
@@ -63,7 +72,9 @@ Options parse_options(const std::vector<std::string>& args) {
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' (see swe-mps --help)");
     } else if (options.command.empty()) {
-      if (arg != "run") throw UsageError("unknown command '" + arg + "' (the command is: run)");
+      if (arg != "run" && arg != "compare") {
+        throw UsageError("unknown command '" + arg + "' (the commands are: run, compare)");
+      }
       options.command = arg;
     } else if (options.scenario.empty()) {
       options.scenario = arg;
@@ -72,7 +83,9 @@ Options parse_options(const std::vector<std::string>& args) {
     }
   }
   if (options.command.empty()) throw UsageError("no command given (see swe-mps --help)");
-  if (options.scenario.empty()) throw UsageError("'run' expects a scenario file");
+  if (options.scenario.empty()) {
+    throw UsageError("'" + options.command + "' expects a scenario file");
+  }
   return options;
 }
 

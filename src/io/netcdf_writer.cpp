@@ -261,8 +261,8 @@ class Definer {
     const std::array map_dims{time_dim, ids.y_dim, ids.x_dim};
     // CF's name for the depth of water standing on land (the sea-floor names assume an
     // ocean).
-    ids.depth = map_var("depth", map_dims, "m", "flood_water_thickness",
-                        "water depth (eq 7 summation of the particles at cell centres)");
+    ids.depth =
+        map_var("depth", map_dims, "m", "flood_water_thickness", layout.depth_long_name.c_str());
     // The datum is the terrain model's, hence no standard name that fixes one (geoid,
     // ellipsoid, mean sea level).
     ids.surface = map_var("surface_elevation", map_dims, "m", nullptr,
@@ -587,20 +587,14 @@ void NetcdfWriter::require_grid_sized(std::span<const double> field, const char*
   }
 }
 
-void NetcdfWriter::write(double time_s, const particles::SweParticles& p, const MapFields& fields) {
-  require_open("write");
+void NetcdfWriter::write_maps(double time_s, const MapFields& fields) {
   require_grid_sized(fields.depth, "write", "depth");
   require_grid_sized(fields.surface_elevation, "write", "surface_elevation");
   require_grid_sized(fields.u, "write", "u");
   require_grid_sized(fields.v, "write", "v");
-  const std::size_t n = p.fluid_count();
-  if (layout_.particles && n > static_cast<std::size_t>(INT_MAX)) {
-    throw std::invalid_argument("NetcdfWriter::write: too many particles for " + quoted(path_));
-  }
   const auto ok = [this](int status, const char* purpose) {
     check(status, purpose, partial_path_);
   };
-
   const std::size_t rec = records_;
   ok(nc_put_var1_double(ncid_, ids_.time, &rec, &time_s), "write variable time");
 
@@ -618,8 +612,30 @@ void NetcdfWriter::write(double time_s, const particles::SweParticles& p, const 
     const std::vector<float> stored = to_stored_floats(m.values);
     ok(nc_put_vara_float(ncid_, m.varid, start.data(), count.data(), stored.data()), m.purpose);
   }
+}
 
+void NetcdfWriter::write(double time_s, const MapFields& fields) {
+  require_open("write");
   if (layout_.particles) {
+    throw std::logic_error("NetcdfWriter::write: " + quoted(path_) +
+                           " is laid out with particles; pass them with the maps");
+  }
+  write_maps(time_s, fields);
+  ++records_;
+}
+
+void NetcdfWriter::write(double time_s, const particles::SweParticles& p, const MapFields& fields) {
+  require_open("write");
+  const std::size_t n = p.fluid_count();
+  if (layout_.particles && n > static_cast<std::size_t>(INT_MAX)) {
+    throw std::invalid_argument("NetcdfWriter::write: too many particles for " + quoted(path_));
+  }
+  write_maps(time_s, fields);
+  if (layout_.particles) {
+    const auto ok = [this](int status, const char* purpose) {
+      check(status, purpose, partial_path_);
+    };
+    const std::size_t rec = records_;
     const int count_value = static_cast<int>(n);
     ok(nc_put_var1_int(ncid_, ids_.count, &rec, &count_value), "write variable particle_count");
     // Fluid particles form the prefix of every field, so each field is a single slab.

@@ -20,6 +20,7 @@
 #include <string_view>
 #include <utility>
 
+#include "swemps/kernels/any_kernel.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace swemps::scenario {
@@ -228,15 +229,24 @@ double positive(const Object& o, std::string_view key, const std::string& unit,
   return x;
 }
 
+// A number within [low, high], each end excluded when it is open.
+double in_range(const Object& o, std::string_view key, double low, bool open_low, double high,
+                bool open_high, const std::string& meaning, double fallback) {
+  const std::string expected = "a number in " + std::string(open_low ? "(" : "[") + fmt(low) +
+                               ", " + fmt(high) + (open_high ? ")" : "]") + " (" + meaning + ")";
+  const double x = number(o, key, expected, fallback);
+  const bool above_low = open_low ? x > low : x >= low;
+  const bool below_high = open_high ? x < high : x <= high;
+  if (!above_low || !below_high) {
+    throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
+  }
+  return x;
+}
+
 // A number within [low, high] (the lower end excluded when `open_low`).
 double bounded(const Object& o, std::string_view key, double low, bool open_low, double high,
                const std::string& meaning, double fallback) {
-  const std::string expected = "a number in " + std::string(open_low ? "(" : "[") + fmt(low) +
-                               ", " + fmt(high) + "] (" + meaning + ")";
-  const double x = number(o, key, expected, fallback);
-  const bool above_low = open_low ? x > low : x >= low;
-  if (!above_low || x > high) throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
-  return x;
+  return in_range(o, key, low, open_low, high, false, meaning, fallback);
 }
 
 std::optional<std::string> optional_string(const Object& o, std::string_view key,
@@ -462,10 +472,10 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
 // Sections of the scene
 
 swe::Settings read_numerics(const json* v, double gravity, std::optional<double>& eddy_viscosity) {
-  const Object o(v ? *v : empty_object(), "/numerics",
-                 {"cfl", "alpha_e", "max_area_ratio", "gradient", "min_time_step",
-                  "eddy_viscosity"},
-                 "an object");
+  const Object o(
+      v ? *v : empty_object(), "/numerics",
+      {"cfl", "alpha_e", "max_area_ratio", "gradient", "min_time_step", "eddy_viscosity"},
+      "an object");
   swe::Settings s;
   s.gravity_m_s2 = gravity;
   s.cfl = bounded(o, "cfl", 0.0, true, 1.0, "the Courant number", s.cfl);
@@ -475,7 +485,8 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
                       "support radius r_e = alpha_e sqrt(A_max), in particle sizes", s.alpha_e);
   // Below 1 the bound would cut the areas of water that has merely thinned a little.
   s.max_area_ratio = bounded(o, "max_area_ratio", 1.0, false, 100.0,
-                             "the largest area eq 9 counts, in multiples of A_0", s.max_area_ratio);  const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
+                             "the largest area eq 9 counts, in multiples of A_0", s.max_area_ratio);
+  const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
   s.gradient =
       gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;
   s.min_time_step_s = positive(o, "min_time_step", kSeconds, s.min_time_step_s);
@@ -590,7 +601,7 @@ void forbid(const Object& o, std::string_view key, std::string_view form,
 
 ParsedWater read_water(const json& v, const std::string& path,
                        const std::optional<Rectangle>& domain, bool has_bed,
-                       const std::filesystem::path& base_dir) {
+                       const std::filesystem::path& base_dir, double default_spacing_m) {
   const Object o(v, path,
                  {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth",
                   "velocity", "spacing", "volumes", "rectangle", "polygon"},
@@ -643,9 +654,11 @@ ParsedWater read_water(const json& v, const std::string& path,
     w.velocity_m_s = pair(*velocity, o.path("velocity"), "a [u, v] pair of numbers (m/s)");
   }
 
-  // A spacing wider than the shape would fill it with at most one row of particles.
-  w.spacing_m = positive(o, "spacing", kMetres);
-  if (!w.polygon.empty()) {
+  // A spacing wider than the shape would fill it with at most one row of particles. The
+  // default of model ns is the tank's lattice, which reports water it cannot fill itself.
+  const bool spacing_given = o.find("spacing") != nullptr || !(default_spacing_m > 0.0);
+  w.spacing_m = spacing_given ? positive(o, "spacing", kMetres) : default_spacing_m;
+  if (spacing_given && !w.polygon.empty()) {
     const Rectangle bb = bounding_box(w.polygon);
     const double width = bb.x_max - bb.x_min, height = bb.y_max - bb.y_min;
     const double limit = std::min(width, height);
@@ -667,14 +680,18 @@ ParsedWater read_water(const json& v, const std::string& path,
 }
 
 // Missing or empty water is allowed here; parse() requires water or an inflow.
+// `default_spacing_m`: the particle spacing of water that gives none (model ns, whose lattice
+// spacing is the "ns" block's); 0: each body must give one.
 std::vector<WaterBody> read_waters(const json* v, const std::optional<Rectangle>& domain,
-                                   bool has_bed, const std::filesystem::path& base_dir) {
+                                   bool has_bed, const std::filesystem::path& base_dir,
+                                   double default_spacing_m) {
   const std::string path = "/water";
   if (v == nullptr) return {};
   if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of water bodies");
   std::vector<ParsedWater> parsed;
   for (std::size_t i = 0; i < v->size(); ++i) {
-    parsed.push_back(read_water((*v)[i], element_path(path, i), domain, has_bed, base_dir));
+    parsed.push_back(
+        read_water((*v)[i], element_path(path, i), domain, has_bed, base_dir, default_spacing_m));
   }
   // Balancing solves for all particles at once (their depths are sums over neighbours, across
   // bodies too), so it is one choice for the whole scene.
@@ -987,6 +1004,167 @@ void check_crs_keys(const Scenario& s) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Navier-Stokes
+
+// An integer within [low, high] written as a JSON number, such as 1000 or 1e3.
+int whole_number(const Object& o, std::string_view key, int low, int high,
+                 const std::string& meaning, int fallback) {
+  const std::string expected = "a whole number from " + std::to_string(low) + " to " +
+                               std::to_string(high) + " (" + meaning + ")";
+  const double x = number(o, key, expected, fallback);
+  if (x != std::floor(x) || x < low || x > high) {
+    throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
+  }
+  return static_cast<int>(x);
+}
+
+Names kernel_names() {
+  const auto names = kernels::kernel_type_names();
+  return Names(names.begin(), names.end());
+}
+
+ns::KernelChoice read_kernel(const json& v, const std::string& path) {
+  const Object o(v, path, {"type", "support", "kappa", "theta"},
+                 "an object with a kernel \"type\" and optionally \"support\", \"kappa\" and "
+                 "\"theta\"");
+  ns::KernelChoice k;
+  const std::string_view name =
+      choice(o, "type", kernel_names(), kernels::kernel_type_name(k.spec.type));
+  k.spec.type = *kernels::kernel_type_from_name(name);
+  // Within one spacing a lattice particle has no neighbour at all; beyond eight a 3D support
+  // holds thousands, and the run would crawl for no gain in accuracy.
+  k.support_spacings = in_range(o, "support", 1.0, true, 8.0, false,
+                                "the cut-off distance in particle spacings", k.support_spacings);
+  // kappa shapes both hyperbolic kernels and theta only the MPS one; elsewhere a value would
+  // be silently ignored, so it is refused.
+  const bool hyperbolic = k.spec.type == kernels::KernelType::hyperbolic_mps ||
+                          k.spec.type == kernels::KernelType::hyperbolic_sph;
+  if (o.find("kappa") != nullptr) {
+    if (!hyperbolic) {
+      throw ScenarioError(o.path("kappa"), "a \"kappa\" for the " + literal(name) + " kernel",
+                          "no \"kappa\" here (it shapes the \"hyperbolic\" and "
+                          "\"hyperbolic-sph\" kernels)");
+    }
+    k.spec.kappa = positive(o, "kappa", "the steepness of the hyperbolic bell");
+  }
+  if (o.find("theta") != nullptr) {
+    if (k.spec.type != kernels::KernelType::hyperbolic_mps) {
+      throw ScenarioError(o.path("theta"), "a \"theta\" for the " + literal(name) + " kernel",
+                          "no \"theta\" here (it is the \"hyperbolic\" kernel's w(0))");
+    }
+    k.spec.theta = positive(o, "theta", "the hyperbolic kernel's value at r = 0");
+  }
+  return k;
+}
+
+ns::PoissonSettings read_solver(const json* v, const std::string& path) {
+  const Object o(v ? *v : empty_object(), path, {"preconditioner", "tolerance", "max_iterations"},
+                 "an object");
+  ns::PoissonSettings s;
+  const std::string_view preconditioner =
+      choice(o, "preconditioner", {"incomplete-cholesky", "diagonal"}, "incomplete-cholesky");
+  s.preconditioner = preconditioner == "diagonal" ? ns::Preconditioner::diagonal
+                                                  : ns::Preconditioner::incomplete_cholesky;
+  s.relative_tolerance =
+      in_range(o, "tolerance", 0.0, true, 1.0, true,
+               "the relative residual |b - A p| / |b| the solve stops at", s.relative_tolerance);
+  s.max_iterations = whole_number(o, "max_iterations", 1, 1000000,
+                                  "conjugate-gradient iterations per solve", s.max_iterations);
+  return s;
+}
+
+std::optional<ns::Collision> read_collision(const json* v, const std::string& path) {
+  if (v == nullptr) return ns::Collision{};
+  if (v->is_boolean()) {
+    return v->get<bool>() ? std::optional<ns::Collision>(ns::Collision{}) : std::nullopt;
+  }
+  const Object o(*v, path, {"distance", "restitution"},
+                 "false (no collisions), true (the defaults) or an object with \"distance\" and "
+                 "\"restitution\"");
+  ns::Collision c;
+  c.distance_spacings = in_range(o, "distance", 0.0, true, 1.0, true,
+                                 "the closest approach in particle spacings", c.distance_spacings);
+  c.restitution = in_range(o, "restitution", 0.0, false, 1.0, false,
+                           "the share of the approach speed kept", c.restitution);
+  return c;
+}
+
+// A length that must be a whole number of lattice spacings (to 1e-6 of one, as the tank's
+// lattice takes it).
+bool whole_spacings(double length, double spacing) {
+  const double n = length / spacing;
+  return n >= 1.0 - 1e-6 && std::abs(n - std::round(n)) <= 1e-6;
+}
+
+std::optional<NsSpec> read_ns(const json* v, double gravity) {
+  if (v == nullptr) return std::nullopt;
+  const Object o(*v, "/ns",
+                 {"spacing", "tank_height", "density", "viscosity", "courant", "max_time_step",
+                  "pressure_kernel", "velocity_kernel", "free_surface_beta", "source",
+                  "source_gamma", "solver", "collision"},
+                 "an object with at least the particle \"spacing\"");
+  NsSpec spec;
+  ns::Settings& s = spec.settings;
+  s.gravity_m_s2 = gravity;
+  s.spacing_m = positive(o, "spacing", kMetres);
+  if (o.find("tank_height") != nullptr) {
+    const double height = positive(o, "tank_height", kMetres);
+    if (!whole_spacings(height, s.spacing_m)) {
+      throw ScenarioError(o.path("tank_height"),
+                          describe(*o.find("tank_height")) + ", which is " +
+                              fmt(height / s.spacing_m) + " spacings of " + fmt(s.spacing_m) + " m",
+                          "a whole number of spacings (metres; the walls stand on the lattice)");
+    }
+    spec.tank_height_m = height;
+  }
+  s.density_kg_m3 = positive(o, "density", "kg/m^3", s.density_kg_m3);
+  s.kinematic_viscosity_m2_s =
+      non_negative(o, "viscosity", "m^2/s, kinematic", s.kinematic_viscosity_m2_s);
+  s.courant =
+      in_range(o, "courant", 0.0, true, 1.0, false, "the Courant number u dt / l_0", s.courant);
+  s.max_time_step_s = positive(o, "max_time_step", kSeconds, s.max_time_step_s);
+  if (const json* kernel = o.find("pressure_kernel")) {
+    s.pressure_kernel = read_kernel(*kernel, o.path("pressure_kernel"));
+  }
+  // One kernel for both sides unless the scene splits them (Kakuda's choice).
+  const json* velocity_kernel = o.find("velocity_kernel");
+  s.velocity_kernel = velocity_kernel ? read_kernel(*velocity_kernel, o.path("velocity_kernel"))
+                                      : s.pressure_kernel;
+  s.free_surface_beta = in_range(o, "free_surface_beta", 0.0, true, 1.0, true,
+                                 "the share of n0 below which a particle is on the free surface",
+                                 s.free_surface_beta);
+  const std::string_view source =
+      choice(o, "source", {"number-density", "mixed"}, "number-density");
+  if (source == "mixed") {
+    s.source = ns::SourceTerm::mixed;
+    s.source_gamma = in_range(o, "source_gamma", 0.0, false, 1.0, false,
+                              "the share of the compression relaxed per step", s.source_gamma);
+  } else if (o.find("source_gamma") != nullptr) {
+    throw ScenarioError(o.path("source_gamma"),
+                        "a \"source_gamma\" with the \"number-density\" source",
+                        "no \"source_gamma\" here (it goes with \"source\": \"mixed\")");
+  }
+  s.solver = read_solver(o.find("solver"), o.path("solver"));
+  s.collision = read_collision(o.find("collision"), o.path("collision"));
+  return spec;
+}
+
+// Twice the deepest water, rounded up to whole spacings: room for the splash of a dam break.
+void default_tank_height(Scenario& s) {
+  if (!s.ns || s.ns->tank_height_m) return;
+  double deepest = 0.0;
+  for (const WaterBody& w : s.water) {
+    if (const auto* uniform = std::get_if<UniformDepth>(&w.depth)) {
+      deepest = std::max(deepest, uniform->depth_m);
+    }
+  }
+  if (!(deepest > 0.0)) return;
+  const double l0 = s.ns->settings.spacing_m;
+  // The slack keeps a product such as 2 x 0.2 / 0.01 = 40.000000000000007 at 40 spacings.
+  s.ns->tank_height_m = std::ceil(2.0 * deepest / l0 - 1e-9) * l0;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Output
 
 std::vector<double> listed_times(const json& v, const std::string& path, double end_time) {
@@ -1064,9 +1242,12 @@ GridSpec read_grid(const json* v, const std::string& path, const Scenario& scene
                  "an object");
   GridSpec grid;
   // A raster bed brings its own cells; elsewhere half the particle spacing resolves the
-  // particle field without empty cells between them.
+  // particle field without empty cells between them. Model ns counts the particles standing
+  // in each cell instead: a cell must hold whole columns of them, or the depth map stripes.
   if (o.find("spacing") != nullptr || !std::holds_alternative<RasterBedSpec>(scene.bed)) {
-    grid.spacing_m = positive(o, "spacing", kMetres, 0.5 * finest_spacing(scene));
+    const double fallback =
+        scene.model == Model::ns ? 2.0 * scene.ns->settings.spacing_m : 0.5 * finest_spacing(scene);
+    grid.spacing_m = positive(o, "spacing", kMetres, fallback);
   }
 
   std::vector<std::string_view> present;
@@ -1173,6 +1354,127 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
 
 namespace {
 
+std::string unsupported(const std::string& what) {
+  return what + " is not supported with model ns";
+}
+
+// The tank is a box on the lattice: water boxes, each an axis-aligned rectangle of uniform
+// depth standing on the floor, at rest.
+void check_ns_water(const Scenario& s, double tank_height) {
+  for (std::size_t i = 0; i < s.water.size(); ++i) {
+    const WaterBody& w = s.water[i];
+    const std::string path = element_path("/water", i);
+    if (std::holds_alternative<LevelSurface>(w.depth)) {
+      throw ScenarioError(member_path(path, "fill"), "water filled to a level",
+                          "water given by \"depth\" (" + unsupported("a level fill") + ")");
+    }
+    if (std::holds_alternative<DepthRaster>(w.depth)) {
+      throw ScenarioError(member_path(path, "depth_raster"), "water depth from a raster",
+                          "water given by \"depth\" (" + unsupported("a depth raster") + ")");
+    }
+    // A rectangle is stored as its four corners; a polygon that is one passes too.
+    const Rectangle bb = bounding_box(w.polygon);
+    const bool rectangle =
+        w.polygon.size() == 4 &&
+        std::all_of(w.polygon.begin(), w.polygon.end(), [&](const Point& p) {
+          return (p[0] == bb.x_min || p[0] == bb.x_max) && (p[1] == bb.y_min || p[1] == bb.y_max);
+        });
+    if (!rectangle) {
+      throw ScenarioError(path,
+                          "a polygon of " + std::to_string(w.polygon.size()) +
+                              " vertices that is not an axis-aligned rectangle",
+                          "a \"rectangle\" (" + unsupported("any other shape") +
+                              ": the water starts as boxes in the tank)");
+    }
+    if (w.velocity_m_s[0] != 0.0 || w.velocity_m_s[1] != 0.0) {
+      throw ScenarioError(
+          member_path(path, "velocity"),
+          "a starting velocity [" + fmt(w.velocity_m_s[0]) + ", " + fmt(w.velocity_m_s[1]) + "]",
+          "water at rest, [0, 0] (" + unsupported("a starting velocity") + ")");
+    }
+    const double depth = std::get<UniformDepth>(w.depth).depth_m;
+    if (depth > tank_height * (1.0 + 1e-12)) {
+      throw ScenarioError("/ns/tank_height",
+                          fmt(tank_height) + " m, below the " + fmt(depth) + " m deep " + path,
+                          "a tank at least as high as the deepest water (metres)");
+    }
+  }
+}
+
+// The walls stand on the lattice, so the sides the tank takes from the domain must be whole
+// numbers of spacings; y only in 3D, where the tank has a width.
+void check_ns_domain(const Scenario& s) {
+  const double l0 = s.ns->settings.spacing_m;
+  const std::string expected =
+      std::string("a spacing that divides the domain's x side") +
+      (s.dimension == 3 ? " and y side" : "") +
+      " into whole numbers (metres; the tank's walls stand on the lattice)";
+  const std::array<std::pair<const char*, double>, 2> sides{
+      {{"x", s.domain.x_max - s.domain.x_min}, {"y", s.domain.y_max - s.domain.y_min}}};
+  for (int axis = 0; axis < (s.dimension == 3 ? 2 : 1); ++axis) {
+    const auto& [name, length] = sides[static_cast<std::size_t>(axis)];
+    if (whole_spacings(length, l0)) continue;
+    throw ScenarioError("/ns/spacing",
+                        fmt(l0) + ", which divides the domain's " + name + " side of " +
+                            fmt(length) + " m into " + fmt(length / l0) + " spacings",
+                        expected);
+  }
+}
+
+}  // namespace
+
+void check_ns_scene(const Scenario& s) {
+  if (!s.ns) {
+    throw ScenarioError("/ns", kMissing,
+                        "an \"ns\" block with at least the particle \"spacing\" (model ns runs "
+                        "on it)");
+  }
+  if (const auto* plane = std::get_if<PlaneBedSpec>(&s.bed)) {
+    if (plane->slope[0] != 0.0 || plane->slope[1] != 0.0) {
+      throw ScenarioError(
+          "/bed/plane/slope",
+          "a sloping plane [" + fmt(plane->slope[0]) + ", " + fmt(plane->slope[1]) + "]",
+          "slope [0, 0] (" + unsupported("a sloping bed") +
+              ": the tank's floor "
+              "is flat)");
+    }
+  } else if (std::holds_alternative<ProfileBedSpec>(s.bed)) {
+    throw ScenarioError("/bed/profile_x", "a bed profile",
+                        "no bed or a level \"plane\" (" + unsupported("a bed profile") +
+                            ": the tank's floor is flat)");
+  } else if (std::holds_alternative<RasterBedSpec>(s.bed)) {
+    throw ScenarioError("/bed/raster", "a raster bed",
+                        "no bed or a level \"plane\" (" + unsupported("a raster bed") +
+                            ": the tank's floor is flat)");
+  }
+  if (s.manning_n) {
+    throw ScenarioError("/friction", "bed friction",
+                        "no \"friction\" (" + unsupported("Manning friction") +
+                            "; the water's own viscosity is ns.viscosity)");
+  }
+  if (s.splitting) {
+    throw ScenarioError("/splitting", "particle splitting",
+                        "no \"splitting\" (" + unsupported("splitting") + ")");
+  }
+  if (!s.inflows.empty()) {
+    throw ScenarioError("/inflow", std::to_string(s.inflows.size()) + " inflow lines",
+                        "no \"inflow\" (" + unsupported("inflow") + ")");
+  }
+  if (!s.outflows.empty()) {
+    throw ScenarioError("/outflow", std::to_string(s.outflows.size()) + " outflow lines",
+                        "no \"outflow\" (" + unsupported("outflow") + ")");
+  }
+  if (s.water.empty()) {
+    throw ScenarioError("/water", "an empty array",
+                        "at least one water body (model ns starts from water in the tank)");
+  }
+  // Every body has a uniform depth here or fails first, so the default height exists then.
+  check_ns_water(s, s.ns->tank_height_m.value_or(std::numeric_limits<double>::infinity()));
+  check_ns_domain(s);
+}
+
+namespace {
+
 // ---------------------------------------------------------------------------------------------
 // Parsing the text
 
@@ -1272,13 +1574,42 @@ json parse_json(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// "model", "dimension" and the "ns" block.
+void read_model(const Object& o, double gravity, Scenario& s) {
+  s.model = choice(o, "model", {"swe", "ns"}, "swe") == "ns" ? Model::ns : Model::swe;
+  s.ns = read_ns(o.find("ns"), gravity);
+  if (s.model == Model::ns && !s.ns) {
+    throw ScenarioError(o.path("ns"), kMissing,
+                        "an \"ns\" block with at least the particle \"spacing\" (model ns runs "
+                        "on it)");
+  }
+  if (o.find("dimension") == nullptr) return;
+  if (s.model != Model::ns && !s.ns) {
+    throw ScenarioError(o.path("dimension"),
+                        "a \"dimension\" in a shallow-water scene without an \"ns\" block",
+                        "no \"dimension\" here (it goes with \"model\": \"ns\" or an \"ns\" "
+                        "block)");
+  }
+  const std::string expected = "2 (a vertical x-z section along x) or 3 (x, y, z)";
+  const double d = number(o, "dimension", expected);
+  if (d != 2.0 && d != 3.0) {
+    throw ScenarioError(o.path("dimension"), describe(*o.find("dimension")), expected);
+  }
+  s.dimension = static_cast<int>(d);
+}
+
+}  // namespace
+
 Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {
   const json root = parse_json(text);
-  const Object o(root, "",
-                 {"name", "description", "gravity", "end_time", "numerics", "domain", "water",
-                  "walls", "bed", "friction", "splitting", "inflow", "outflow", "output"},
-                 "a JSON object describing the scene");
+  const Object o(
+      root, "",
+      {"name", "description", "gravity", "end_time", "numerics", "model", "dimension", "ns",
+       "domain", "water", "walls", "bed", "friction", "splitting", "inflow", "outflow", "output"},
+      "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
   if (s.name.empty()) {
@@ -1289,6 +1620,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   const double gravity = positive(o, "gravity", "m/s^2", swe::Settings{}.gravity_m_s2);
   s.end_time_s = positive(o, "end_time", kSeconds);
   s.numerics = read_numerics(o.find("numerics"), gravity, s.eddy_viscosity_m2_s);
+  read_model(o, gravity, s);
 
   // The bed comes first: a raster bed may give the domain, and water filled to a level needs
   // a bed to fill.
@@ -1307,7 +1639,10 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   }
 
   const bool has_bed = !std::holds_alternative<std::monostate>(s.bed);
-  s.water = read_waters(o.find("water"), domain, has_bed, base_dir);
+  // Model ns fills its tank on the "ns" lattice; a water body's own spacing is then optional.
+  const double default_spacing_m = s.model == Model::ns ? s.ns->settings.spacing_m : 0.0;
+  s.water = read_waters(o.find("water"), domain, has_bed, base_dir, default_spacing_m);
+  default_tank_height(s);
   s.walls = read_walls(o.find("walls"));
   s.manning_n = read_friction(o.find("friction"), base_dir);
   s.splitting = read_splitting(o.find("splitting"));
@@ -1321,6 +1656,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   check_crs_keys(s);
   s.output = read_output(o.find("output"), s, base_dir);
   if (domain) check_within_domain(s, *domain);
+  if (s.model == Model::ns) check_ns_scene(s);
   return s;
 }
 

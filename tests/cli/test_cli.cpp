@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,7 @@ TEST_CASE("--help and --version", "[cli]") {
   const auto help = run(cli + " --help");
   CHECK(help.status == 0);
   CHECK_THAT(help.output, Catch::Contains("swe-mps run SCENARIO.json"));
+  CHECK_THAT(help.output, Catch::Contains("swe-mps compare SCENARIO.json"));
   const auto version = run(cli + " --version");
   CHECK(version.status == 0);
   CHECK_THAT(version.output, Catch::StartsWith("swe-mps "));
@@ -67,7 +69,7 @@ TEST_CASE("--help and --version", "[cli]") {
 
 TEST_CASE("bad command lines exit 2 with one clear message", "[cli]") {
   for (const std::string args :
-       {"", "fly x.json", "run", "run a.json --threads zero", "run a.json --bogus"}) {
+       {"", "fly x.json", "run", "compare", "run a.json --threads zero", "run a.json --bogus"}) {
     const auto r = run(cli + " " + args);
     INFO(args << " -> " << r.output);
     CHECK(r.status == 2);
@@ -273,5 +275,241 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
     INFO(python.output);
     CHECK(python.status == 0);
   }
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// A CSV file of numbers under one header line; "nan" reads as NaN.
+struct Table {
+  std::string header;
+  std::vector<std::vector<double>> rows;
+};
+
+Table read_csv(const fs::path& file) {
+  std::ifstream in(file);
+  REQUIRE(in.good());
+  Table t;
+  std::getline(in, t.header);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+// A tank 0.4 m long with 0.1 m of water in its first 0.1 m, as a vertical section on a 1 cm
+// lattice: 100 fluid particles, 100 steps of 1 ms (the time step's cap).
+const char* kTinyNsScene = R"({
+  "end_time": 0.1,
+  "model": "ns",
+  "dimension": 2,
+  "ns": {"spacing": 0.01},
+  "domain": {"x_min": 0, "x_max": 0.4, "y_min": 0, "y_max": 0.1},
+  "water": [{"rectangle": {"x_min": 0, "x_max": 0.1, "y_min": 0, "y_max": 0.1}, "depth": 0.1}],
+  "walls": [{"polyline": [[0, 0], [0.4, 0]]}],
+  "output": {"path": "tank.nc", "interval": 0.05, "series_interval": 0.01,
+             "gauges": [{"name": "wall foot", "x": 0.02, "y": 0.05}]}
+})";
+
+}  // namespace
+
+TEST_CASE("a model ns scene writes column depths that hold its water, and a series table",
+          "[cli]") {
+  const auto dir = fresh_dir("ns");
+  std::ofstream(dir / "scenario.json") << kTinyNsScene;
+  const auto r = run(cli + " run " + (dir / "scenario.json").string() + " --threads 2");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("model ns (2D x-z section), 100 fluid"));
+  CHECK_THAT(r.output, Catch::Contains("the scene's 1 walls are not used"));
+  CHECK_THAT(r.output, Catch::Contains("Poisson: conjugate gradients, incomplete-Cholesky "
+                                       "preconditioner, tolerance 1e-06"));
+  CHECK_THAT(r.output, Catch::Contains("0 unconverged solves"));
+  CHECK_THAT(r.output, Catch::Contains("time per phase: sort"));
+  const auto nc = dir / "tank.nc";
+  const auto csv = dir / "tank.series.csv";
+  REQUIRE(fs::exists(nc));
+  REQUIRE(fs::exists(csv));
+  CHECK_FALSE(fs::exists(dir / "tank.nc.partial"));
+  CHECK_FALSE(fs::exists(dir / "tank.series.csv.partial"));
+
+  SECTION("the depth maps hold the particles' volume at every output time") {
+    const auto depth = read_variable(nc, "depth");  // (time, y, x)
+    const auto x = read_variable(nc, "x");
+    const auto y = read_variable(nc, "y");
+    const auto time = read_variable(nc, "time");
+    REQUIRE(time == std::vector<double>{0.0, 0.05, 0.1});
+    const std::size_t cells = x.size() * y.size();
+    REQUIRE(depth.size() == time.size() * cells);
+    const double dx = x[1] - x[0], dy = y[1] - y[0];
+    // 100 particles of 1 cm x 1 cm in a section standing for the domain's 0.1 m width.
+    const double volume0 = 100 * 0.01 * 0.01 * 0.1;
+    for (std::size_t k = 0; k < time.size(); ++k) {
+      double volume = 0.0;
+      for (std::size_t c = 0; c < cells; ++c) {
+        const double h = depth[k * cells + c];
+        INFO("record " << k << ", cell " << c);
+        REQUIRE(std::isfinite(h));
+        REQUIRE(h >= 0.0);
+        REQUIRE(h < 0.2);  // no fill values: the tank's water is 0.1 m deep
+        volume += h * dx * dy;
+      }
+      // Every particle is counted in the cell it stands over, so only the maps' 32-bit
+      // storage (7 significant digits) separates the two.
+      INFO("t = " << time[k]);
+      CHECK(volume == Approx(volume0).epsilon(1e-6));
+    }
+    // The water has left its box: depth downstream of it at the end, none at the start.
+    CHECK(depth[10] == 0.0);            // x = 0.21 m, t = 0
+    CHECK(depth[2 * cells + 5] > 0.0);  // x = 0.11 m, t = 0.1 s
+    CHECK(read_variable(nc, "volume_in_domain").back() == Approx(volume0).epsilon(1e-12));
+    int ncid = -1, varid = -1;
+    REQUIRE(nc_open(nc.c_str(), NC_NOWRITE, &ncid) == NC_NOERR);
+    CHECK(nc_inq_varid(ncid, "particle_count", &varid) != NC_NOERR);  // no SWE particles
+    nc_close(ncid);
+  }
+
+  SECTION("the series table samples the run at the series interval") {
+    const Table t = read_csv(csv);
+    CHECK(t.header ==
+          "time_s,time_step_s,front_m,fluid_particles,poisson_iterations,poisson_residual,"
+          "unknowns,wall_foot_floor_pressure_pa");
+    REQUIRE(t.rows.size() == 11);  // t = 0, 0.01, ..., 0.1
+    double pressure_sum = 0.0;
+    for (std::size_t k = 0; k < t.rows.size(); ++k) {
+      const auto& row = t.rows[k];
+      INFO("row " << k);
+      REQUIRE(row.size() == 8);
+      CHECK(row[0] == Approx(0.01 * static_cast<double>(k)).margin(1e-12));
+      CHECK(row[1] > 0.0);
+      CHECK(row[1] <= 1e-3);
+      CHECK(row[3] == 100.0);
+      if (k == 0) {
+        CHECK(row[2] == Approx(0.1));  // the column's face: 10 particles from the wall
+        CHECK(std::isnan(row[4]));     // no step yet
+        CHECK(row[7] == 0.0);
+        continue;
+      }
+      // The surge advances; a tip particle that loses its company (a droplet) may take the
+      // front back by a fraction of a spacing.
+      CHECK(row[2] >= t.rows[k - 1][2] - 0.005);
+      CHECK(row[2] < 0.4);
+      CHECK(row[4] >= 1.0);
+      CHECK(row[5] <= 1e-6);
+      CHECK(row[6] >= 90.0);  // the submerged fluid particles and the walls beside them
+      CHECK(row[7] >= 0.0);
+      pressure_sum += row[7];
+    }
+    CHECK(t.rows.back()[2] > 0.15);  // the front ran out of the 0.1 m box
+    // Near the back wall the column stands nearly full height until the rarefaction arrives
+    // (at 0.1 m / sqrt(g h0) = 0.1 s), so the floor there carries about its weight: each
+    // sample is noisy (MPS pressure, measured 0.3 to 1.8 times rho g h0), their mean is not.
+    const double hydrostatic = 1000.0 * 9.81 * 0.1;
+    CHECK(pressure_sum / 10.0 > 0.7 * hydrostatic);
+    CHECK(pressure_sum / 10.0 < 1.2 * hydrostatic);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("model ns refuses what its tank cannot hold, exiting 2", "[cli]") {
+  const auto dir = fresh_dir("ns-bad");
+  std::string scene = kTinyNsScene;
+  scene.insert(scene.rfind('}'), R"(, "friction": {"manning_n": 0.01})");
+  std::ofstream(dir / "scenario.json") << scene;
+  const auto r = run(cli + " run " + (dir / "scenario.json").string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("scenario error at /friction"));
+  CHECK_THAT(r.output, Catch::Contains("not supported with model ns"));
+  CHECK_FALSE(fs::exists(dir / "tank.nc.partial"));
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// A 0.3 m x 0.04 m channel with a 0.06 m long, 0.04 m deep column at its upstream end: 24
+// shallow-water particles, 96 Navier-Stokes particles.
+const char* kTinyCompareScene = R"({
+  "end_time": 0.1,
+  "domain": {"x_min": 0, "x_max": 0.3, "y_min": 0, "y_max": 0.04},
+  "water": [{"rectangle": {"x_min": 0, "x_max": 0.06, "y_min": 0, "y_max": 0.04},
+             "depth": 0.04, "spacing": 0.01}],
+  "walls": [{"polyline": [[0.3, 0], [0, 0], [0, 0.04], [0.3, 0.04]]}],
+  "ns": {"spacing": 0.01},
+  "output": {"path": "channel.nc", "interval": 0.05, "series_interval": 0.01,
+             "grid": {"spacing": 0.02}}
+})";
+
+}  // namespace
+
+TEST_CASE("compare runs both models and tabulates their fronts beside Ritter's", "[cli]") {
+  const auto dir = fresh_dir("compare");
+  std::ofstream(dir / "scenario.json") << kTinyCompareScene;
+  const auto stem = dir / "out" / "dam";
+  fs::create_directories(dir / "out");
+  const auto r = run(cli + " compare " + (dir / "scenario.json").string() + " --threads 2 -o " +
+                     stem.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("compare: Navier-Stokes 96 fluid"));
+  CHECK_THAT(r.output, Catch::Contains("compare: shallow water 24 particles"));
+  for (const char* suffix : {".swe.nc", ".ns.nc", ".ns.series.csv", ".fronts.csv"}) {
+    INFO(suffix);
+    CHECK(fs::exists(stem.string() + suffix));
+  }
+  CHECK_FALSE(fs::exists(dir / "channel.nc"));  // -o sets the stem of every file
+  // Both maps on the scene's grid and times, so their depths can be set side by side.
+  CHECK(read_variable(stem.string() + ".swe.nc", "time") ==
+        read_variable(stem.string() + ".ns.nc", "time"));
+  CHECK(read_variable(stem.string() + ".swe.nc", "x").size() == 15);
+  CHECK(read_variable(stem.string() + ".ns.nc", "x").size() == 15);
+
+  const Table t = read_csv(stem.string() + ".fronts.csv");
+  CHECK(t.header == "time_s,swe_front_m,ns_front_m,ritter_front_m");
+  REQUIRE(t.rows.size() == 11);
+  const double c0 = std::sqrt(9.81 * 0.04);
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    const auto& row = t.rows[k];
+    INFO("row " << k);
+    REQUIRE(row.size() == 4);
+    CHECK(row[0] == Approx(0.01 * static_cast<double>(k)).margin(1e-12));
+    CHECK(row[3] == Approx(0.06 + 2.0 * c0 * row[0]));
+    // Neither model outruns the dry-bed front, and neither falls behind the dam.
+    CHECK(row[1] <= row[3] + 1e-9);
+    CHECK(row[2] <= row[3] + 1e-9);
+    CHECK(row[1] >= 0.05);
+    CHECK(row[2] >= 0.06 - 1e-9);
+    if (k == 0) continue;
+    // Fronts advance; half a spacing allows a tip particle's jitter.
+    CHECK(row[1] >= t.rows[k - 1][1] - 0.005);
+    CHECK(row[2] >= t.rows[k - 1][2] - 0.005);
+  }
+  // Both moved on by more than a spacing (the shallow-water front is the last particle deeper
+  // than the 1 cm wet depth, a quarter of this column's depth, so it moves least).
+  CHECK(t.rows.back()[1] > 0.065);
+  CHECK(t.rows.back()[2] > 0.08);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("compare refuses a scene model ns cannot run, before running either", "[cli]") {
+  const auto dir = fresh_dir("compare-bad");
+  std::string scene = kTinyCompareScene;
+  scene.insert(scene.rfind('}'), R"(, "friction": {"manning_n": 0.01})");
+  std::ofstream(dir / "scenario.json") << scene;
+  const auto r = run(cli + " compare " + (dir / "scenario.json").string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("scenario error at /friction"));
+  CHECK_FALSE(fs::exists(dir / "channel.swe.nc"));
+
+  std::string no_block = kTinyCompareScene;
+  no_block.erase(no_block.find(R"("ns": {"spacing": 0.01},)"), 25);
+  std::ofstream(dir / "scenario.json") << no_block;
+  const auto missing = run(cli + " compare " + (dir / "scenario.json").string());
+  CHECK(missing.status == 2);
+  CHECK_THAT(missing.output, Catch::Contains("scenario error at /ns: found nothing"));
   fs::remove_all(dir);
 }

@@ -771,6 +771,45 @@ TEST_CASE("NetcdfWriter without particles defines no particle variables", "[io][
   CHECK_FALSE(r.has_var("particle_x"));
 }
 
+TEST_CASE("NetcdfWriter writes maps alone, with the depth's own description", "[io][netcdf]") {
+  TempDir tmp;
+  const fs::path file = tmp.path() / "columns.nc";
+  const Grid grid = small_grid();
+  Layout layout = layout_of(grid, false);
+  layout.depth_long_name = "water depth: particles standing in the cell";
+  const Maps first = make_maps(grid.nx * grid.ny, 0.0);
+  const Maps second = make_maps(grid.nx * grid.ny, 7.0);
+  {
+    NetcdfWriter w(file, layout, metadata());
+    w.write(0.0, first.fields());
+    w.write(0.5, second.fields());
+    CHECK(w.records() == 2);
+    w.finish();
+  }
+  Reader r(file);
+  CHECK(r.dim("time") == 2);
+  CHECK_FALSE(r.has_var("particle_count"));
+  CHECK(r.text("depth", "long_name") == "water depth: particles standing in the cell");
+  CHECK(r.all_doubles("time") == std::vector<double>{0.0, 0.5});
+  const auto depth = r.floats("depth");
+  REQUIRE(depth.size() == 2 * grid.nx * grid.ny);
+  CHECK(depth[grid.nx * grid.ny + 5] == Approx(second.depth[5]));
+  CHECK(depth[5] == Approx(first.depth[5]));
+}
+
+TEST_CASE("NetcdfWriter laid out with particles refuses maps without them", "[io][netcdf]") {
+  TempDir tmp;
+  const fs::path file = tmp.path() / "needs_particles.nc";
+  const Grid grid = small_grid();
+  NetcdfWriter w(file, layout_of(grid, true), metadata());
+  CHECK_THROWS_AS(w.write(0.0, make_maps(grid.nx * grid.ny, 0.0).fields()), std::logic_error);
+  CHECK(w.records() == 0);
+  // The default depth description is the shallow-water summation's.
+  w.write(0.0, make_particles(1, 0), make_maps(grid.nx * grid.ny, 0.0).fields());
+  w.finish();
+  CHECK_THAT(Reader(file).text("depth", "long_name"), Catch::Contains("eq 7 summation"));
+}
+
 TEST_CASE("NetcdfWriter destroyed without finish leaves only the partial file", "[io][netcdf]") {
   TempDir tmp;
   const fs::path file = tmp.path() / "crashed.nc";

@@ -437,8 +437,8 @@ TEST_CASE("the valley-flood case builds on the shipped DEM and accounts for its 
   // What came in is the hydrograph's volume, less the strip that has not yet made a whole
   // row: at most one row, line length x spacing x depth.
   const auto& inflow = scene.inflows.at(0);
-  const double line_m = std::hypot(inflow.line[1][0] - inflow.line[0][0],
-                                   inflow.line[1][1] - inflow.line[0][1]);
+  const double line_m =
+      std::hypot(inflow.line[1][0] - inflow.line[0][0], inflow.line[1][1] - inflow.line[0][1]);
   const double row_m3 = line_m * inflow.spacing_m * inflow.depth_m.value();
   const double hydrograph_m3 = 0.5 * until_s * 2000.0;  // Q rises linearly to 2000 at 1800 s
   CHECK(sim.ledger().added_m3 <= hydrograph_m3 * (1 + 1e-12));

@@ -69,7 +69,8 @@ std::vector<Broken> broken_scenes() {
       {"unrelated unknown key", edited([](json& s) {
          s["numerics"] = {{"zzzzzz", 1}};
        }),
-       "/numerics/zzzzzz", "one of the keys cfl, alpha_e, max_area_ratio, gradient, min_time_step, eddy_viscosity"},
+       "/numerics/zzzzzz",
+       "one of the keys cfl, alpha_e, max_area_ratio, gradient, min_time_step, eddy_viscosity"},
       {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
        "found nothing (key missing), expected a number > 0 (seconds)"},
       {"missing domain", edited([](json& s) { s.erase("domain"); }), "/domain", "key missing"},

@@ -12,10 +12,12 @@ namespace swemps::cli {
 enum class Verbosity { quiet, normal, verbose };
 
 struct Options {
-  std::string command;  // "run", or "help" / "version"
+  std::string command;  // "run", "compare", or "help" / "version"
   std::filesystem::path scenario;
-  std::optional<std::filesystem::path> output;  // -o overrides the scene's output path
-  int threads = 0;                              // 0: OpenMP's default
+  // -o: run writes here instead of the scene's output path; compare takes it as the stem of
+  // its files.
+  std::optional<std::filesystem::path> output;
+  int threads = 0;  // 0: OpenMP's default
   Verbosity verbosity = Verbosity::normal;
 };
 

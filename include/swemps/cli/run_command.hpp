@@ -1,5 +1,6 @@
 #pragma once
-// `swe-mps run`: scenario file -> simulation -> netCDF output, with progress and a summary.
+// The swe-mps commands: `run` (scenario file -> simulation of the scene's model -> netCDF
+// output, with progress and a summary) and `compare` (compare_command.hpp).
 
 #include <string>
 
@@ -16,7 +17,8 @@ enum ExitStatus : int {
   exit_output = 4,
 };
 
-// Runs the scene; throws scenario::ScenarioError, swe::SimulationError, OutputError.
+// Runs options.command on the scene; throws scenario::ScenarioError, swe::SimulationError,
+// ns::SimulationError, OutputError.
 void run(const Options& options, const std::string& command_line);
 
 class OutputError : public std::runtime_error {

@@ -50,6 +50,9 @@ struct Layout {
   Grid grid;
   bool particles = true;      // write the particles at every output time
   std::vector<Gauge> gauges;  // may be empty: then the file has no gauge variables
+  // The depth map's long_name: how the depth was measured (the shallow-water summation, or
+  // the Navier-Stokes column of particles).
+  std::string depth_long_name = "water depth (eq 7 summation of the particles at cell centres)";
 };
 
 // Gridded fields of one output time: ny * nx values each, row-major with x fastest (index
@@ -99,6 +102,9 @@ class NetcdfWriter {
 
   // Appends one output time of the maps and, if enabled, the fluid particles of `p`.
   void write(double time_s, const particles::SweParticles& p, const MapFields& fields);
+  // Appends one output time of the maps alone, for a layout without particles (throws
+  // std::logic_error otherwise: the particle records would fall out of step with the maps).
+  void write(double time_s, const MapFields& fields);
 
   // Appends one series time: one sample per gauge, in the order given at construction.
   void write_series(double time_s, std::span<const GaugeSample> gauges,
@@ -123,6 +129,7 @@ class NetcdfWriter {
   void require_open(const char* caller) const;
   void require_grid_sized(std::span<const double> field, const char* caller,
                           const char* name) const;
+  void write_maps(double time_s, const MapFields& fields);
 
   std::filesystem::path path_, partial_path_;
   int ncid_ = -1;

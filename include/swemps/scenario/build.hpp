@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "swemps/ns/simulation.hpp"
+#include "swemps/ns/tank.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/swe/bed.hpp"
 #include "swemps/swe/operators.hpp"
@@ -63,5 +65,26 @@ swe::Simulation make_simulation(const Scenario& scene);
 // the requested spacing. Bounds default to the domain. Throws ScenarioError when no raster
 // cell lies whole inside the bounds.
 swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain);
+
+// Model ns. The tank: the domain's plan (its x range; and y range in 3D) from the floor (the
+// level bed's elevation, 0 without a bed) up to ns.tank_height; each water body a box from
+// the floor up to its depth over the same ranges (in 2D only its x range); solid layers
+// enough to fill either kernel's support, ceil(support / l_0). The scene must pass
+// check_ns_scene (throws ScenarioError otherwise). Dim is the scene's dimension.
+template <int Dim>
+ns::TankSpec<Dim> ns_tank(const Scenario& scene);
+
+// The Navier-Stokes run of the scene: the tank filled (ns::fill_tank) and the simulation
+// built with the tank's box, solid layers included, as the bounds fluid may not leave.
+// Throws ScenarioError at the key to blame for a tank the lattice cannot fill, water holding
+// no lattice node, or settings the solver refuses; std::invalid_argument when Dim is not the
+// scene's dimension.
+template <int Dim>
+ns::Simulation<Dim> make_ns_simulation(const Scenario& scene);
+
+extern template ns::TankSpec<2> ns_tank<2>(const Scenario&);
+extern template ns::TankSpec<3> ns_tank<3>(const Scenario&);
+extern template ns::Simulation<2> make_ns_simulation<2>(const Scenario&);
+extern template ns::Simulation<3> make_ns_simulation<3>(const Scenario&);
 
 }  // namespace swemps::scenario

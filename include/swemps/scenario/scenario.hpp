@@ -11,6 +11,7 @@
 #include <variant>
 #include <vector>
 
+#include "swemps/ns/settings.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/settings.hpp"
 
@@ -131,6 +132,23 @@ struct Output {
   double wet_depth_m = 0.01;       // the depth a cell must exceed to count as wet
 };
 
+// Which equations run the scene.
+enum class Model {
+  swe,  // depth-integrated shallow water over the plan (x, y): particles, walls, effects
+  ns,   // incompressible Navier-Stokes in a tank (ns::Simulation): water boxes, solid walls
+};
+
+// The scene's "ns" block: how the Navier-Stokes mode runs it.
+struct NsSpec {
+  // Maps 1:1 onto the solver's settings; gravity_m_s2 is the scene's gravity, spacing_m is
+  // l_0, and the defaults are ns::Settings' own.
+  ns::Settings settings;
+  // Height of the tank's side walls above the floor, a whole number of spacings. Absent only
+  // when the file gives none and the scene has no water of uniform depth to take the default
+  // from (twice the deepest, rounded up to whole spacings); model ns refuses such water.
+  std::optional<double> tank_height_m;
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -149,6 +167,10 @@ struct Scenario {
   std::vector<Inflow> inflows;
   std::vector<Outflow> outflows;
   Output output;
+  Model model = Model::swe;
+  // Model ns: 2 = a vertical x-z section along x (the scene's y is ignored), 3 = x, y, z.
+  int dimension = 3;
+  std::optional<NsSpec> ns;  // required with model ns; optional otherwise (compare needs it)
 };
 
 // A problem in a scenario file: where (JSON path such as /water/0/depth), what was found,
@@ -176,5 +198,13 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
 // it is not absurdly fine. parse() makes them when the file gives the domain; build makes them
 // once the bed raster has given it. Throws ScenarioError.
 void check_within_domain(const Scenario& scene, const Rectangle& domain);
+
+// What model ns needs of a scene, beyond what parse() checks for every scene: an "ns" block;
+// water that is axis-aligned rectangles of uniform depth at rest; no bed or a level one; no
+// friction, splitting, inflow or outflow; a domain whose sides (x, and y in 3D) and a tank
+// height that are whole numbers of spacings, the tank at least as high as the water.
+// parse() calls it for scenes with model ns; the compare command calls it for the scene it
+// runs as model ns. Throws ScenarioError naming the key that is in the way.
+void check_ns_scene(const Scenario& scene);
 
 }  // namespace swemps::scenario
