@@ -77,9 +77,9 @@ ColumnFields column_fields(const ns::Particles<Dim>& p, double spacing_m,
 }
 
 // Where a Navier-Stokes run stops: every multiple of the series interval (a sample) and
-// every output time (maps and a sample), in order. The run lands on each exactly (the step
-// before is shortened), so its series lies on the interval's grid; Navier-Stokes steps are
-// Courant-limited and far shorter than any sensible interval, so little is changed by that.
+// every output time (maps and a sample), in order. Output times are landed on exactly;
+// samples are taken at the end of the first step that reaches them, so that sampling never
+// changes the run.
 struct Stop {
   double time_s;
   bool maps;
@@ -181,12 +181,23 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
 
   double output_s = 0.0;
   const double wet = scene.output.wet_depth_m;
+  // A sample and the output time right after it can fall on the same step (the run lands on
+  // the output time while heading for the sample): the series gets that state once.
+  std::size_t sampled_at_step = 0;
+  bool sampled = false;
+  double last_front = 0.0;
   const auto sample = [&](bool maps) {
     const auto t0 = Clock::now();
     const auto& p = sim.particles();
     const ColumnFields f = column_fields<Dim>(p, l0, plan);
     const GriddedState state{f.depth, f.u, f.v};
     if (maps) file.write_maps(sim.time(), state);
+    if (sampled && sampled_at_step == sim.steps()) {
+      output_s += seconds_since(t0);
+      return last_front;
+    }
+    sampled = true;
+    sampled_at_step = sim.steps();
     std::vector<io::GaugeSample> at_gauges;
     for (const auto& g : scene.output.gauges) {
       const long i = cell_of(g.position_m[0], grid.x0, grid.dx, grid.nx);
@@ -207,7 +218,7 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
     const double front = ns::front_position<Dim>(p, l0);
     const bool stepped = sim.steps() > 0;
     const auto& last = sim.last_step();
-    // The stable step rather than the last one: the step that landed on this sample time may
+    // The stable step rather than the last one: the steps that landed on an output time may
     // have been shortened to do so.
     std::vector<double> row{sim.time(),
                             sim.stable_time_step(),
@@ -220,6 +231,7 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
     series.row(row);
     if (observe_front) observe_front(sim.time(), front);
     output_s += seconds_since(t0);
+    last_front = front;
     return front;
   };
 
@@ -227,13 +239,30 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
   Progress progress(scene.end_time_s, context.progress);
   Interval interval;
   double particle_steps = 0.0;
-  for (const Stop& stop : stops_of(scene.output, scene.end_time_s)) {
+  const auto stops = stops_of(scene.output, scene.end_time_s);
+  // For each stop, the next output time at or after it: full steps towards a sample must not
+  // carry the run past it.
+  std::vector<double> next_map(stops.size(), scene.end_time_s);
+  for (std::size_t k = stops.size(); k-- > 0;) {
+    next_map[k] = stops[k].maps ? stops[k].time_s
+                                : (k + 1 < stops.size() ? next_map[k + 1] : scene.end_time_s);
+  }
+  for (std::size_t k = 0; k < stops.size(); ++k) {
+    const Stop& stop = stops[k];
     while (sim.time() < stop.time_s) {
-      // One step per call, as advance_to(stop) would take them (the last lands on the stop),
-      // so that progress and the per-step log can follow every step.
+      // One step per call, so that progress and the per-step log follow every step. Series
+      // samples are taken at the end of the first full step that reaches them; only output
+      // times are landed on, in equal steps as advance_to takes them (a shortened step would
+      // spike the number-density source, which scales as 1/dt^2).
       const double dt = sim.stable_time_step();
-      const double target = stop.time_s - sim.time() <= 1.1 * dt ? stop.time_s : sim.time() + dt;
-      sim.advance_to(target);
+      const double remaining = next_map[k] - sim.time();
+      if (!stop.maps && remaining > dt) {
+        sim.advance(dt);
+      } else if (remaining <= dt) {
+        sim.advance_to(next_map[k]);
+      } else {
+        sim.advance(remaining / std::ceil(remaining / dt * (1.0 - 1e-12)));
+      }
       const auto& last = sim.last_step();
       particle_steps += static_cast<double>(sim.particles().fluid);
       ++interval.steps;

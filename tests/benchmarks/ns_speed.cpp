@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
   s.spacing_m = 0.006;
   if (argc > 2) s.solver.relative_tolerance = std::atof(argv[2]);
   if (argc > 3) s.courant = std::atof(argv[3]);
-  if (argc > 4 && std::string(argv[4]) == "diagonal") s.solver.preconditioner = Preconditioner::diagonal;
+  if (argc > 4 && std::string(argv[4]) == "diagonal")
+    s.solver.preconditioner = Preconditioner::diagonal;
 
   TankSpec<2> tank;
   tank.interior.upper = {3.216, 1.2};
@@ -36,30 +37,35 @@ int main(int argc, char** argv) {
   const double solid = tank.solid_layers * s.spacing_m;
   Simulation<2> sim(fill_tank<2>(tank), s, {-solid, -solid}, {3.216 + solid, 1.2 + solid});
   const auto& p = sim.particles();
-  std::printf("fluid %zu, wall %zu, dummy %zu; threads %d; tolerance %g, courant %g, %s\n", p.fluid,
-              p.wall, p.dummy, omp_get_max_threads(), s.solver.relative_tolerance, s.courant,
-              s.solver.preconditioner == Preconditioner::diagonal ? "diagonal" : "incomplete Cholesky");
+  std::printf(
+      "fluid %zu, wall %zu, dummy %zu; threads %d; tolerance %g, courant %g, %s\n", p.fluid, p.wall,
+      p.dummy, omp_get_max_threads(), s.solver.relative_tolerance, s.courant,
+      s.solver.preconditioner == Preconditioner::diagonal ? "diagonal" : "incomplete Cholesky");
 
   const auto wall_start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   for (double t = 0.1; t <= end_time + 1e-9; t += 0.1) {
     sim.advance_to(t);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    std::printf("t %.1f s: steps %zu, front %.3f m, Poisson iterations/step %.1f (max %d), wall %.1f s\n",
-                t, sim.steps(), front_position<2>(sim.particles(), s.spacing_m),
-                double(sim.totals().poisson_iterations) / double(sim.steps()),
-                sim.totals().max_poisson_iterations, wall);
+    const double wall =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    std::printf(
+        "t %.1f s: steps %zu, front %.3f m, Poisson iterations/step %.1f (max %d), wall %.1f s\n",
+        t, sim.steps(), front_position<2>(sim.particles(), s.spacing_m),
+        double(sim.totals().poisson_iterations) / double(sim.steps()),
+        sim.totals().max_poisson_iterations, wall);
     std::fflush(stdout);
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   const double cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   const auto& t = sim.totals();
-  std::printf("wall %.1f s, cpu %.1f s for %.2f simulated s: %.1f s wall per simulated s\n", wall, cpu,
-              sim.time(), wall / sim.time());
-  std::printf("steps %zu (%.2f ms per step), unconverged %zu, lost %zu\n", t.steps, 1e3 * wall / t.steps,
-              t.unconverged_solves, t.lost_particles);
-  std::printf("phases (s): sort %.2f, neighbours %.2f, explicit %.2f, density %.2f, assembly %.2f, "
-              "solve %.2f, correction %.2f\n",
-              t.phases.sort, t.phases.neighbors, t.phases.explicit_part, t.phases.density,
-              t.phases.assembly, t.phases.solve, t.phases.correction);
+  std::printf("wall %.1f s, cpu %.1f s for %.2f simulated s: %.1f s wall per simulated s\n", wall,
+              cpu, sim.time(), wall / sim.time());
+  std::printf("steps %zu (%.2f ms per step), unconverged %zu, lost %zu\n", t.steps,
+              1e3 * wall / t.steps, t.unconverged_solves, t.lost_particles);
+  std::printf(
+      "phases (s): sort %.2f, neighbours %.2f, explicit %.2f, density %.2f, assembly %.2f, "
+      "solve %.2f, correction %.2f\n",
+      t.phases.sort, t.phases.neighbors, t.phases.explicit_part, t.phases.density,
+      t.phases.assembly, t.phases.solve, t.phases.correction);
 }

@@ -108,8 +108,8 @@ TEST_CASE("tank: lattice fluid and the wall and dummy layers around an open box"
 
 TEST_CASE("lattice constants of the standard kernel at 2.1 l0 in 2D", "[ns]") {
   const double l0 = 0.01;
-  const auto kernel = swemps::kernels::make_kernel<2>({swemps::kernels::KernelType::standard},
-                                                      2.1 * l0);
+  const auto kernel =
+      swemps::kernels::make_kernel<2>({swemps::kernels::KernelType::standard}, 2.1 * l0);
   const auto c = lattice_constants<2>(kernel, l0);
   // Neighbours at l0, sqrt2 l0 and 2 l0, four of each.
   CHECK(c.neighbours == 12);
@@ -170,8 +170,7 @@ TEST_CASE("ns: water at rest in a tank holds hydrostatic pressure", "[ns]") {
   CHECK(max_speed(p) < 0.05 * std::sqrt(gravity * depth));
 }
 
-TEST_CASE("ns: a 2D column collapse stays stable and its front follows the experiment",
-          "[ns]") {
+TEST_CASE("ns: a 2D column collapse stays stable and its front follows the experiment", "[ns]") {
   const double a = 0.05715;  // Martin & Moyce's 2.25 in
   Settings s;
   auto sim = column_collapse<2>(20, a, s);

@@ -57,7 +57,8 @@ Patch make_patch(int n, double jitter, const swemps::kernels::AnyKernel<2>& kern
 
 // The MPS Laplacian (2d/(lambda n0)) sum_j (p_j - p_i) w_ij, summed straight from the
 // positions with an O(N^2) loop: the reference the assembled matrix must reproduce.
-std::vector<double> direct_laplacian(const Patch& patch, const swemps::kernels::AnyKernel<2>& kernel,
+std::vector<double> direct_laplacian(const Patch& patch,
+                                     const swemps::kernels::AnyKernel<2>& kernel,
                                      const std::vector<double>& pressure, double factor) {
   const std::size_t n = patch.x[0].size();
   std::vector<double> out(n, 0.0);
@@ -96,8 +97,10 @@ TEST_CASE("poisson: a two-unknown system has the entries of the MPS Laplacian", 
   CHECK(system.particle_of_unknown == std::vector<std::uint32_t>{0, 1});
 }
 
-TEST_CASE("poisson: assembly reproduces the direct Laplacian and the solve recovers a chosen "
-          "pressure", "[ns][poisson]") {
+TEST_CASE(
+    "poisson: assembly reproduces the direct Laplacian and the solve recovers a chosen "
+    "pressure",
+    "[ns][poisson]") {
   const auto [name, support] = GENERATE(std::pair{"standard", 2.1}, std::pair{"sheu-quartic", 2.0},
                                         std::pair{"hyperbolic", 4.0});
   const auto preconditioner =
@@ -141,7 +144,8 @@ TEST_CASE("poisson: assembly reproduces the direct Laplacian and the solve recov
   CHECK((guess - p).norm() <= 1e-9 * p.norm());
 }
 
-TEST_CASE("poisson: a zero right-hand side gives zero pressure without iterating", "[ns][poisson]") {
+TEST_CASE("poisson: a zero right-hand side gives zero pressure without iterating",
+          "[ns][poisson]") {
   NeighborList pairs;
   pairs.offsets = {0, 1, 2};
   pairs.index = {1, 0};

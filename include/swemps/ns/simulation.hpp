@@ -100,7 +100,8 @@ class Simulation {
   double stable_time_step() const;
   // One step of dt (> 0). Throws SimulationError if the state stops being finite.
   void advance(double dt);
-  // Steps of at most stable_time_step() until time() == t exactly.
+  // Steps until time() == t exactly: the span left is cut into equal steps of at most
+  // stable_time_step(), so none is shorter than half of it.
   void advance_to(double t);
 
  private:
