@@ -13,6 +13,7 @@
 
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/timing.hpp"
 #include "swemps/ns/measures.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/scenario/build.hpp"
@@ -21,12 +22,7 @@ namespace swemps::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // The plan cell (along one axis) that holds coordinate x, or -1 outside the grid; cells are
 // centred on x0 + i dx, as ns::column_depth bins them.

@@ -11,6 +11,7 @@
 
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/timing.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/swe/simulation.hpp"
 
@@ -18,12 +19,7 @@ namespace swemps::cli {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 // When the next series sample is due: the first multiple of `interval_s` after `time_s`.
 // Samples are taken at the end of the first step that reaches one, so that sampling never
