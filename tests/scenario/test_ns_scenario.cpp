@@ -12,11 +12,16 @@
 #include <string>
 #include <vector>
 
+#include "../support/broken_scenes.hpp"
 #include "swemps/kernels/any_kernel.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
+
+using swemps::testing::Broken;
+using swemps::testing::check_broken;
+using swemps::testing::parse_text;
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -42,17 +47,6 @@ std::string ns_edited(const std::function<void(json&)>& edit) {
   edit(scene);
   return scene.dump(2);
 }
-
-swemps::scenario::Scenario parse_text(const std::string& text) {
-  return swemps::scenario::parse(text, fs::temp_directory_path(), "test");
-}
-
-struct Broken {
-  std::string label;
-  std::string text;
-  std::string path;     // the whole json_path()
-  std::string message;  // a substring of what()
-};
 
 std::vector<Broken> broken_ns_scenes() {
   return {
@@ -208,18 +202,7 @@ std::vector<Broken> broken_ns_scenes() {
 }  // namespace
 
 TEST_CASE("broken Navier-Stokes scenes point at the exact key", "[scenario]") {
-  for (const Broken& c : broken_ns_scenes()) {
-    INFO("case: " << c.label << "\ntext:\n" << c.text);
-    bool threw = false;
-    try {
-      parse_text(c.text);
-    } catch (const ScenarioError& e) {
-      threw = true;
-      CHECK(e.json_path() == c.path);
-      CHECK_THAT(std::string(e.what()), Contains(c.message));
-    }
-    CHECK(threw);
-  }
+  check_broken(broken_ns_scenes(), true);
 }
 
 TEST_CASE("a bad kernel name lists every kernel the solver knows", "[scenario]") {

@@ -12,9 +12,14 @@
 #include <variant>
 #include <vector>
 
+#include "../support/broken_scenes.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
+
+using swemps::testing::Broken;
+using swemps::testing::check_broken;
+using swemps::testing::parse_text;
 
 namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
@@ -40,17 +45,6 @@ std::string edited(const std::function<void(json&)>& edit) {
   edit(scene);
   return scene.dump(2);
 }
-
-swemps::scenario::Scenario parse_text(const std::string& text) {
-  return swemps::scenario::parse(text, fs::temp_directory_path(), "test");
-}
-
-struct Broken {
-  std::string label;
-  std::string text;
-  std::string path;     // expected substring of json_path()
-  std::string message;  // expected substring of what()
-};
 
 std::vector<Broken> broken_scenes() {
   return {
@@ -240,32 +234,6 @@ std::vector<Broken> broken_effect_scenes() {
       {"unknown split axis", with_key("splitting", R"({"axis": "minr"})"), "/splitting/axis",
        "expected one of \"minor\", \"major\" (did you mean \"minor\"?)"},
   };
-}
-
-}  // namespace
-
-namespace {
-
-// Each broken scene must throw a ScenarioError at its path (a prefix match, or the exact
-// path) whose message names what was expected.
-void check_broken(const std::vector<Broken>& cases, bool exact_path) {
-  for (const Broken& c : cases) {
-    INFO("case: " << c.label << "\ntext:\n" << c.text);
-    bool threw = false;
-    try {
-      parse_text(c.text);
-    } catch (const ScenarioError& e) {
-      threw = true;
-      if (exact_path) {
-        CHECK(e.json_path() == c.path);
-      } else {
-        CHECK_THAT(e.json_path(), Contains(c.path));
-        CHECK_THAT(std::string(e.what()), Contains("scenario error at "));
-      }
-      CHECK_THAT(std::string(e.what()), Contains(c.message));
-    }
-    CHECK(threw);
-  }
 }
 
 }  // namespace
