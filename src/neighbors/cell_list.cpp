@@ -76,6 +76,10 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width)
   order_.resize(n);
   std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  for (int d = 0; d < Dim; ++d) {
+    cell_ordered_[d].resize(n);
+    for (std::size_t k = 0; k < n; ++k) cell_ordered_[d][k] = coords[d][order_[k]];
+  }
 }
 
 template class CellList<1>;

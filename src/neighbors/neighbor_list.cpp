@@ -1,6 +1,7 @@
 #include "swemps/neighbors/neighbor_list.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "swemps/neighbors/parallel.hpp"
@@ -27,6 +28,41 @@ double distance_squared(const Coordinates<Dim>& coords, const std::array<double,
   return r2;
 }
 
+// The cell-ordered coordinates of a cell list, as plain pointers so that loops over a range of
+// them vectorise.
+template <int Dim>
+std::array<const double*, Dim> cell_ordered_pointers(const CellList<Dim>& cells) {
+  std::array<const double*, Dim> c{};
+  for (int d = 0; d < Dim; ++d) c[d] = cells.cell_ordered(d).data();
+  return c;
+}
+
+// Squared distance from `p` to the point at cell-ordered position k. The count and the fill
+// pass both use this one expression, so they agree on every comparison with the radius.
+template <int Dim>
+inline double distance_squared_at(const std::array<const double*, Dim>& c,
+                                  const std::array<double, Dim>& p, std::size_t k) {
+  double r2 = 0.0;
+  for (int d = 0; d < Dim; ++d) {
+    const double delta = c[d][k] - p[d];
+    r2 += delta * delta;
+  }
+  return r2;
+}
+
+// How many of the points at cell-ordered positions [begin, end) lie closer than the radius.
+// Counted in a double (exact for any count that fits in memory): a floating-point accumulator
+// lets the compiler vectorise the loop with the baseline x86-64 instruction set, an integer
+// one does not.
+template <int Dim>
+double count_within(const std::array<const double*, Dim>& c, const std::array<double, Dim>& p,
+                    std::size_t begin, std::size_t end, double radius2) {
+  double hits = 0.0;
+  for (std::size_t k = begin; k < end; ++k)
+    hits += distance_squared_at<Dim>(c, p, k) < radius2 ? 1.0 : 0.0;
+  return hits;
+}
+
 }  // namespace
 
 template <int Dim>
@@ -39,35 +75,52 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
     throw std::invalid_argument("neighbour list: more targets than binned points");
   }
   const double radius2 = radius * radius;
-  out.offsets.assign(target_count + 1, 0);
+  const auto order = cells.order();
+  const auto c = cell_ordered_pointers(cells);
+  // A target is one of the binned points, so it meets itself at distance 0 (counted when the
+  // radius is > 0) and the count pass takes that one off.
+  const double self = 0.0 < radius2 ? 1.0 : 0.0;
 
-  // One distance pass: each row is written at a slot sized by its candidate count (cheap to
-  // get from the cell ranges), then the rows are packed. Counting first and filling second
-  // would test every candidate distance twice; the list build was the largest cost of a step.
-  std::vector<std::uint32_t> bound(target_count + 1, 0);
+  // Two passes over the candidates, both reading the cell-ordered coordinates with unit
+  // stride: the first only counts, so that the rows can be placed exactly; the second writes
+  // them. Together they cost less than one pass writing into slots sized for every candidate
+  // and packing afterwards, which also needs three times the memory.
+  out.offsets.assign(target_count + 1, 0);
   parallel_for(target_count, [&](std::size_t i) {
-    bound[i + 1] = static_cast<std::uint32_t>(cells.candidate_count(point_at<Dim>(coords, i)));
-  });
-  for (std::size_t i = 0; i < target_count; ++i) bound[i + 1] += bound[i];
-  out.index.resize(bound[target_count]);
-  parallel_for(target_count, [&](std::size_t i) {
-    std::uint32_t* slot = out.index.data() + bound[i];
     const auto p = point_at<Dim>(coords, i);
-    cells.for_each_candidate(p, [&](std::uint32_t j) {
-      if (j != i && distance_squared<Dim>(coords, p, j) < radius2) *slot++ = j;
+    double hits = -self;
+    cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+      hits += count_within<Dim>(c, p, begin, end, radius2);
     });
-    out.offsets[i + 1] = static_cast<std::uint32_t>(slot - (out.index.data() + bound[i]));
+    out.offsets[i + 1] = static_cast<std::uint32_t>(hits);
   });
-  // Pack: rows move only towards the front, in order, so a forward copy is safe.
-  std::uint32_t packed = 0;
-  for (std::size_t i = 0; i < target_count; ++i) {
-    const std::uint32_t count = out.offsets[i + 1];
-    std::copy_n(out.index.data() + bound[i], count, out.index.data() + packed);
-    out.offsets[i] = packed;
-    packed += count;
-  }
-  out.offsets[target_count] = packed;
-  out.index.resize(packed);
+  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.index.resize(out.offsets[target_count]);
+  out.distance.resize(out.offsets[target_count]);
+
+  parallel_for(target_count, [&](std::size_t i) {
+    const auto p = point_at<Dim>(coords, i);
+    std::uint32_t* index = out.index.data() + out.offsets[i];
+    double* distance = out.distance.data() + out.offsets[i];
+    const std::uint32_t length = out.offsets[i + 1] - out.offsets[i];
+    // Every candidate is written and kept by advancing m: about a third of the candidates
+    // are neighbours, a pattern no branch predictor guesses. Once the row is full, the
+    // remaining writes go to a discard slot, never into the next row.
+    std::uint32_t discard_index = 0;
+    double discard_r2 = 0.0;
+    std::uint32_t m = 0;
+    cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const double r2 = distance_squared_at<Dim>(c, p, k);
+        const std::uint32_t j = order[k];
+        const bool room = m < length;
+        *(room ? index + m : &discard_index) = j;
+        *(room ? distance + m : &discard_r2) = r2;
+        m += (r2 < radius2) & (j != i) ? 1u : 0u;
+      }
+    });
+    for (std::uint32_t k = 0; k < length; ++k) distance[k] = std::sqrt(distance[k]);
+  });
 }
 
 template <int Dim>
@@ -79,8 +132,10 @@ NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t t
   for (std::size_t i = 0; i < target_count; ++i) {
     const auto p = point_at<Dim>(coords, i);
     for (std::size_t j = 0; j < n; ++j) {
-      if (j != i && distance_squared<Dim>(coords, p, j) < radius * radius) {
+      const double r2 = distance_squared<Dim>(coords, p, j);
+      if (j != i && r2 < radius * radius) {
         out.index.push_back(static_cast<std::uint32_t>(j));
+        out.distance.push_back(std::sqrt(r2));
       }
     }
     out.offsets.push_back(static_cast<std::uint32_t>(out.index.size()));

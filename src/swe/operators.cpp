@@ -38,10 +38,9 @@ void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel&
   const double self = w.w(0.0);
   parallel_for(p.fluid_count(), [&](std::size_t i) {
     double h = p.volume[i] * self;  // eq 7 includes j = i
-    for (std::uint32_t j : nl.row(i)) {
-      const double r = distance(p.x[j] - p.x[i], p.y[j] - p.y[i]);
-      h += p.volume[j] * w.w(r);
-    }
+    const auto row = nl.row(i);
+    const auto r = nl.row_distances(i);
+    for (std::size_t k = 0; k < row.size(); ++k) h += p.volume[row[k]] * w.w(r[k]);
     p.depth[i] = h;
     p.area[i] = p.volume[i] / h;
   });
@@ -50,10 +49,9 @@ void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel&
 double number_density_at(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
                          std::size_t i) {
   double sum = 0.0;
-  for (std::uint32_t j : nl.row(i)) {
-    const double r = distance(p.x[j] - p.x[i], p.y[j] - p.y[i]);
-    sum += p.area[j] * w.w(r);
-  }
+  const auto row = nl.row(i);
+  const auto r = nl.row_distances(i);
+  for (std::size_t k = 0; k < row.size(); ++k) sum += p.area[row[k]] * w.w(r[k]);
   return sum / p.area[i];
 }
 
@@ -74,12 +72,15 @@ std::array<double, 2> mps_gradient_at(const SweParticles& p, const neighbors::Ne
                                       double number_density) {
   constexpr double dimension = 2.0;  // D of eq 6
   double sx = 0.0, sy = 0.0;
-  for (std::uint32_t j : nl.row(i)) {
+  const auto row = nl.row(i);
+  const auto r = nl.row_distances(i);
+  for (std::size_t k = 0; k < row.size(); ++k) {
+    const std::uint32_t j = row[k];
     const double dx = p.x[j] - p.x[i];
     const double dy = p.y[j] - p.y[i];
     const double r2 = dx * dx + dy * dy;
     if (r2 < coincident_m * coincident_m) continue;
-    const double f = (phi[j] - phi[i]) / r2 * (p.area[j] / p.area[i]) * w.w(std::sqrt(r2));
+    const double f = (phi[j] - phi[i]) / r2 * (p.area[j] / p.area[i]) * w.w(r[k]);
     sx += f * dx;
     sy += f * dy;
   }
@@ -96,10 +97,13 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
   // conserves momentum to round-off.
   parallel_for(p.fluid_count(), [&](std::size_t i) {
     double sx = 0.0, sy = 0.0;
-    for (std::uint32_t j : nl.row(i)) {
+    const auto row = nl.row(i);
+    const auto distances = nl.row_distances(i);
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const std::uint32_t j = row[k];
       const double dx = p.x[i] - p.x[j];
       const double dy = p.y[i] - p.y[j];
-      const double r = distance(dx, dy);
+      const double r = distances[k];
       if (r < coincident_m) continue;
       const double f = p.volume[j] * w.dw_dr(r) / r;
       sx += f * dx;
@@ -110,23 +114,44 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
   });
 }
 
-void mps_gradient(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
-                  std::span<double> gx, std::span<double> gy) {
+// eq 6 for phi = h with eq 5's n_i from the same pass: both weigh neighbour j by A_j w_ij, so
+// n_i = sum A_j w_ij / A_i and grad h_i = D / n_i sum (h_j - h_i) / r^2 (A_j / A_i) w_ij x_ij
+// = D sum (h_j - h_i) / r^2 A_j w_ij x_ij / sum A_j w_ij: one walk over the row, not two.
+void mps_depth_gradient(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
+                        std::span<double> gx, std::span<double> gy) {
+  constexpr double dimension = 2.0;  // D of eq 6
   parallel_for(p.fluid_count(), [&](std::size_t i) {
-    const auto g = mps_gradient_at(p, nl, w, i, p.depth, p.number_density[i]);
-    gx[i] = g[0];
-    gy[i] = g[1];
+    double weight_sum = 0.0, sx = 0.0, sy = 0.0;
+    const auto row = nl.row(i);
+    const auto r = nl.row_distances(i);
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const std::uint32_t j = row[k];
+      const double aw = p.area[j] * w.w(r[k]);
+      weight_sum += aw;
+      const double dx = p.x[j] - p.x[i];
+      const double dy = p.y[j] - p.y[i];
+      const double r2 = dx * dx + dy * dy;
+      if (r2 < coincident_m * coincident_m) continue;
+      const double f = (p.depth[j] - p.depth[i]) / r2 * aw;
+      sx += f * dx;
+      sy += f * dy;
+    }
+    p.number_density[i] = weight_sum / p.area[i];
+    // An isolated particle feels no gradient.
+    const double scale = weight_sum > 0.0 ? dimension / weight_sum : 0.0;
+    gx[i] = scale * sx;
+    gy[i] = scale * sy;
   });
 }
 
 }  // namespace
 
-void depth_gradient(GradientVariant variant, const SweParticles& p,
+void depth_gradient(GradientVariant variant, SweParticles& p,
                     const neighbors::NeighborList& nl, const Kernel& w, std::span<double> gx,
                     std::span<double> gy) {
   switch (variant) {
     case GradientVariant::summation: summation_gradient(p, nl, w, gx, gy); return;
-    case GradientVariant::mps: mps_gradient(p, nl, w, gx, gy); return;
+    case GradientVariant::mps: mps_depth_gradient(p, nl, w, gx, gy); return;
   }
 }
 

@@ -157,10 +157,7 @@ void Simulation::update_fields() {
     ScopedTimer timer(phase_times_.depth);
     sum_depth(particles_, neighbor_list_, kernel_);
     boundaries::GhostWalls::copy_fields_to_ghosts(particles_);  // eq 5 and eq 6 read ghosts' h, A
-    // Only eq 6 needs the number density (ghosts' own n is never read).
-    if (settings_.gradient == GradientVariant::mps) {
-      sum_number_density(particles_, neighbor_list_, kernel_);
-    }
+    // eq 5's number density is summed with the eq 6 gradient in advance() (one pass for both).
   }
 }
 

@@ -29,6 +29,9 @@ class CellList {
   double cell_width() const { return cell_width_; }
   // Point indices sorted by cell (row-major cell order, x fastest).
   std::span<const std::uint32_t> order() const { return order_; }
+  // Coordinate d of point order()[k] at k: a copy in cell order, so that a loop over the
+  // candidates of a point reads a few contiguous runs with unit stride instead of gathering.
+  std::span<const double> cell_ordered(int d) const { return cell_ordered_[d]; }
 
   // How many points for_each_candidate(point, ...) visits, without visiting them.
   std::size_t candidate_count(const std::array<double, Dim>& point) const {
@@ -38,6 +41,16 @@ class CellList {
                cell_start_[static_cast<std::size_t>(first_cell)];
     });
     return count;
+  }
+
+  // Calls run(begin, end) for each range [begin, end) of positions in order() (and
+  // cell_ordered()) that together hold the candidates for_each_candidate visits, in its order.
+  template <class Run>
+  void for_each_candidate_range(const std::array<double, Dim>& point, Run&& run) const {
+    for_each_cell_run(point, [&](std::int64_t first_cell, std::int64_t last_cell) {
+      run(cell_start_[static_cast<std::size_t>(first_cell)],
+          cell_start_[static_cast<std::size_t>(last_cell) + 1]);
+    });
   }
 
   // Calls f(j) for every point j in the cells around `point` (a superset of the points
@@ -100,6 +113,7 @@ class CellList {
   double cell_width_ = 1.0;
   std::vector<std::uint32_t> cell_start_;  // size cell_count + 1
   std::vector<std::uint32_t> order_;
+  std::array<std::vector<double>, Dim> cell_ordered_;
 };
 
 extern template class CellList<1>;

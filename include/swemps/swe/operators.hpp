@@ -44,9 +44,9 @@ std::array<double, 2> mps_gradient_at(const particles::SweParticles& p,
                                       std::size_t i, std::span<const double> phi,
                                       double number_density);
 
-// Gradient of the depth h at every fluid particle, by the chosen variant (see Settings).
-// The mps variant needs number_density (eq 5) to be current.
-void depth_gradient(GradientVariant variant, const particles::SweParticles& p,
+// Gradient of the depth h at every fluid particle, by the chosen variant (see Settings). The
+// mps variant also stores eq 5's number density in p.number_density, which it sums on the way.
+void depth_gradient(GradientVariant variant, particles::SweParticles& p,
                     const neighbors::NeighborList& nl, const Kernel& w, std::span<double> grad_x,
                     std::span<double> grad_y);
 
