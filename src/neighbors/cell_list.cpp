@@ -6,10 +6,15 @@
 namespace swemps::neighbors {
 
 template <int Dim>
-void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width) {
-  if (!(min_cell_width > 0.0) || !std::isfinite(min_cell_width)) {
+void CellList<Dim>::build(const Coordinates<Dim>& coords, double search_radius, int subdivisions) {
+  if (!(search_radius > 0.0) || !std::isfinite(search_radius)) {
     throw std::invalid_argument("cell list: cell width must be finite and > 0");
   }
+  if (subdivisions < 1 || subdivisions > 8) {
+    throw std::invalid_argument("cell list: subdivisions must be 1 to 8");
+  }
+  reach_ = subdivisions;
+  const double min_cell_width = search_radius / subdivisions;
   const std::size_t n = coords[0].size();
   for (int d = 1; d < Dim; ++d) {
     if (coords[d].size() != n)
@@ -42,7 +47,7 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double min_cell_width)
   // A few far-flung points must not make the grid huge: widen cells until there are at
   // most a few cells per point. Wider cells only add candidates, never lose neighbours.
   // Cells a hair wider than asked: (x - origin) / width is rounded, so two points closer
-  // than the width could otherwise land two cells apart. 1e-8 covers the rounding of cell
+  // than `reach` widths could otherwise land reach + 1 cells apart. 1e-8 covers the rounding of cell
   // coordinates up to ~1e7 cells along an axis.
   cell_width_ = min_cell_width * (1.0 + 1e-8);
   const double max_cells = 4.0 * static_cast<double>(n) + 1024.0;

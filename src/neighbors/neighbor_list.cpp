@@ -68,7 +68,7 @@ double count_within(const std::array<const double*, Dim>& c, const std::array<do
 template <int Dim>
 void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
                          std::size_t target_count, double radius, NeighborList& out) {
-  if (radius > cells.cell_width()) {
+  if (radius > cells.search_radius()) {
     throw std::invalid_argument("neighbour list: radius larger than the cell width");
   }
   if (target_count > cells.point_count()) {
@@ -96,18 +96,15 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   });
   for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
   out.index.resize(out.offsets[target_count]);
-  out.distance.resize(out.offsets[target_count]);
 
   parallel_for(target_count, [&](std::size_t i) {
     const auto p = point_at<Dim>(coords, i);
     std::uint32_t* index = out.index.data() + out.offsets[i];
-    double* distance = out.distance.data() + out.offsets[i];
     const std::uint32_t length = out.offsets[i + 1] - out.offsets[i];
     // Every candidate is written and kept by advancing m: about a third of the candidates
     // are neighbours, a pattern no branch predictor guesses. Once the row is full, the
     // remaining writes go to a discard slot, never into the next row.
     std::uint32_t discard_index = 0;
-    double discard_r2 = 0.0;
     std::uint32_t m = 0;
     cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
       for (std::uint32_t k = begin; k < end; ++k) {
@@ -115,11 +112,9 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
         const std::uint32_t j = order[k];
         const bool room = m < length;
         *(room ? index + m : &discard_index) = j;
-        *(room ? distance + m : &discard_r2) = r2;
         m += (r2 < radius2) & (j != i) ? 1u : 0u;
       }
     });
-    for (std::uint32_t k = 0; k < length; ++k) distance[k] = std::sqrt(distance[k]);
   });
 }
 
@@ -135,7 +130,6 @@ NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t t
       const double r2 = distance_squared<Dim>(coords, p, j);
       if (j != i && r2 < radius * radius) {
         out.index.push_back(static_cast<std::uint32_t>(j));
-        out.distance.push_back(std::sqrt(r2));
       }
     }
     out.offsets.push_back(static_cast<std::uint32_t>(out.index.size()));

@@ -17,6 +17,60 @@ namespace {
 // hypot's overflow guards cost several times the arithmetic and buy nothing.
 inline double distance(double dx, double dy) { return std::sqrt(dx * dx + dy * dy); }
 
+// Smallest separation treated as distinct: coincident points have no direction.
+constexpr double coincident_m = 1e-12;
+
+// A block of particle i's neighbour row, ready for a sum: the offsets x_j - x_i, r^2, and up to
+// two weights per pair. Rows are 20 to 80 long, so one block nearly always.
+struct PairBlock {
+  static constexpr std::size_t capacity = 64;
+  std::span<const std::uint32_t> index;  // the neighbours j of this block
+  std::array<double, capacity> dx, dy, r2, weight, second_weight;
+};
+
+// Calls visit(block) for row i block by block. Each block is made in two steps: a loop gathers
+// the neighbours' offsets, then weigh(block) computes the weights from r^2 in loops without a
+// gather, which the compiler vectorises. The square roots and divisions that kernel weights
+// need then cost a fraction of what they did inside the gathering loop, where they stalled it.
+template <class Weigh, class Visit>
+void for_each_pair_block(const SweParticles& p, const neighbors::NeighborList& nl, std::size_t i,
+                         Weigh&& weigh, Visit&& visit) {
+  PairBlock block;
+  const auto row = nl.row(i);
+  for (std::size_t first = 0; first < row.size(); first += PairBlock::capacity) {
+    block.index = row.subspan(first, std::min(PairBlock::capacity, row.size() - first));
+    const std::size_t count = block.index.size();
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t j = block.index[k];
+      block.dx[k] = p.x[j] - p.x[i];
+      block.dy[k] = p.y[j] - p.y[i];
+    }
+    for (std::size_t k = 0; k < count; ++k)
+      block.r2[k] = block.dx[k] * block.dx[k] + block.dy[k] * block.dy[k];
+    weigh(block);
+    visit(block);
+  }
+}
+
+// weight = w(r): the weight of eqs 5 and 7.
+auto kernel_weights(const Kernel& w) {
+  return [&w](PairBlock& b) {
+    for (std::size_t k = 0; k < b.index.size(); ++k) b.weight[k] = w.w(std::sqrt(b.r2[k]));
+  };
+}
+
+// weight = w(r) and second_weight = w(r) / r^2, the direction weight of eq 6, which is 0 for
+// coincident points: they have no direction.
+auto kernel_and_gradient_weights(const Kernel& w) {
+  return [&w](PairBlock& b) {
+    for (std::size_t k = 0; k < b.index.size(); ++k) {
+      const double r2 = b.r2[k];
+      b.weight[k] = w.w(std::sqrt(r2));
+      b.second_weight[k] = r2 >= coincident_m * coincident_m ? b.weight[k] / r2 : 0.0;
+    }
+  };
+}
+
 }  // namespace
 
 double influence_radius(const SweParticles& p, double alpha_e, double max_area_ratio,
@@ -36,11 +90,12 @@ double influence_radius(const SweParticles& p, double alpha_e, double max_area_r
 
 void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w) {
   const double self = w.w(0.0);
+  const auto kernel_weight = kernel_weights(w);
   parallel_for(p.fluid_count(), [&](std::size_t i) {
     double h = p.volume[i] * self;  // eq 7 includes j = i
-    const auto row = nl.row(i);
-    const auto r = nl.row_distances(i);
-    for (std::size_t k = 0; k < row.size(); ++k) h += p.volume[row[k]] * w.w(r[k]);
+    for_each_pair_block(p, nl, i, kernel_weight, [&](const PairBlock& b) {
+      for (std::size_t k = 0; k < b.index.size(); ++k) h += p.volume[b.index[k]] * b.weight[k];
+    });
     p.depth[i] = h;
     p.area[i] = p.volume[i] / h;
   });
@@ -49,9 +104,9 @@ void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel&
 double number_density_at(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
                          std::size_t i) {
   double sum = 0.0;
-  const auto row = nl.row(i);
-  const auto r = nl.row_distances(i);
-  for (std::size_t k = 0; k < row.size(); ++k) sum += p.area[row[k]] * w.w(r[k]);
+  for_each_pair_block(p, nl, i, kernel_weights(w), [&](const PairBlock& b) {
+    for (std::size_t k = 0; k < b.index.size(); ++k) sum += p.area[b.index[k]] * b.weight[k];
+  });
   return sum / p.area[i];
 }
 
@@ -60,30 +115,19 @@ void sum_number_density(SweParticles& p, const neighbors::NeighborList& nl, cons
                [&](std::size_t i) { p.number_density[i] = number_density_at(p, nl, w, i); });
 }
 
-namespace {
-
-// Smallest separation treated as distinct: coincident points have no direction.
-constexpr double coincident_m = 1e-12;
-
-}  // namespace
-
 std::array<double, 2> mps_gradient_at(const SweParticles& p, const neighbors::NeighborList& nl,
                                       const Kernel& w, std::size_t i, std::span<const double> phi,
                                       double number_density) {
   constexpr double dimension = 2.0;  // D of eq 6
   double sx = 0.0, sy = 0.0;
-  const auto row = nl.row(i);
-  const auto r = nl.row_distances(i);
-  for (std::size_t k = 0; k < row.size(); ++k) {
-    const std::uint32_t j = row[k];
-    const double dx = p.x[j] - p.x[i];
-    const double dy = p.y[j] - p.y[i];
-    const double r2 = dx * dx + dy * dy;
-    if (r2 < coincident_m * coincident_m) continue;
-    const double f = (phi[j] - phi[i]) / r2 * (p.area[j] / p.area[i]) * w.w(r[k]);
-    sx += f * dx;
-    sy += f * dy;
-  }
+  for_each_pair_block(p, nl, i, kernel_and_gradient_weights(w), [&](const PairBlock& b) {
+    for (std::size_t k = 0; k < b.index.size(); ++k) {
+      const std::uint32_t j = b.index[k];
+      const double f = (phi[j] - phi[i]) * (p.area[j] / p.area[i]) * b.second_weight[k];
+      sx += f * b.dx[k];
+      sy += f * b.dy[k];
+    }
+  });
   if (!(number_density > 0.0)) return {0.0, 0.0};  // an isolated particle feels no gradient
   return {dimension / number_density * sx, dimension / number_density * sy};
 }
@@ -95,20 +139,22 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
   // grad h_i = sum_j V_j dw/dr (x_i - x_j) / r: the exact derivative of eq 7 with respect to
   // x_i. With a common r_e (eq 9) the pair terms are antisymmetric, so -g V_i grad h_i
   // conserves momentum to round-off.
+  // weight = (dw/dr) / r, 0 for coincident points.
+  const auto derivative_over_r = [&w](PairBlock& b) {
+    for (std::size_t k = 0; k < b.index.size(); ++k) {
+      const double r = std::sqrt(b.r2[k]);
+      b.weight[k] = r >= coincident_m ? w.dw_dr(r) / r : 0.0;
+    }
+  };
   parallel_for(p.fluid_count(), [&](std::size_t i) {
     double sx = 0.0, sy = 0.0;
-    const auto row = nl.row(i);
-    const auto distances = nl.row_distances(i);
-    for (std::size_t k = 0; k < row.size(); ++k) {
-      const std::uint32_t j = row[k];
-      const double dx = p.x[i] - p.x[j];
-      const double dy = p.y[i] - p.y[j];
-      const double r = distances[k];
-      if (r < coincident_m) continue;
-      const double f = p.volume[j] * w.dw_dr(r) / r;
-      sx += f * dx;
-      sy += f * dy;
-    }
+    for_each_pair_block(p, nl, i, derivative_over_r, [&](const PairBlock& b) {
+      for (std::size_t k = 0; k < b.index.size(); ++k) {
+        const double f = p.volume[b.index[k]] * b.weight[k];
+        sx -= f * b.dx[k];  // dx = x_j - x_i: the derivative takes x_i - x_j
+        sy -= f * b.dy[k];
+      }
+    });
     gx[i] = sx;
     gy[i] = sy;
   });
@@ -116,26 +162,22 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
 
 // eq 6 for phi = h with eq 5's n_i from the same pass: both weigh neighbour j by A_j w_ij, so
 // n_i = sum A_j w_ij / A_i and grad h_i = D / n_i sum (h_j - h_i) / r^2 (A_j / A_i) w_ij x_ij
-// = D sum (h_j - h_i) / r^2 A_j w_ij x_ij / sum A_j w_ij: one walk over the row, not two.
+// = D sum (h_j - h_i) A_j w_ij / r^2 x_ij / sum A_j w_ij: one walk over the row, not two.
 void mps_depth_gradient(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
                         std::span<double> gx, std::span<double> gy) {
   constexpr double dimension = 2.0;  // D of eq 6
+  const auto pair_weights = kernel_and_gradient_weights(w);
   parallel_for(p.fluid_count(), [&](std::size_t i) {
     double weight_sum = 0.0, sx = 0.0, sy = 0.0;
-    const auto row = nl.row(i);
-    const auto r = nl.row_distances(i);
-    for (std::size_t k = 0; k < row.size(); ++k) {
-      const std::uint32_t j = row[k];
-      const double aw = p.area[j] * w.w(r[k]);
-      weight_sum += aw;
-      const double dx = p.x[j] - p.x[i];
-      const double dy = p.y[j] - p.y[i];
-      const double r2 = dx * dx + dy * dy;
-      if (r2 < coincident_m * coincident_m) continue;
-      const double f = (p.depth[j] - p.depth[i]) / r2 * aw;
-      sx += f * dx;
-      sy += f * dy;
-    }
+    for_each_pair_block(p, nl, i, pair_weights, [&](const PairBlock& b) {
+      for (std::size_t k = 0; k < b.index.size(); ++k) {
+        const std::uint32_t j = b.index[k];
+        weight_sum += p.area[j] * b.weight[k];
+        const double f = (p.depth[j] - p.depth[i]) * p.area[j] * b.second_weight[k];
+        sx += f * b.dx[k];
+        sy += f * b.dy[k];
+      }
+    });
     p.number_density[i] = weight_sum / p.area[i];
     // An isolated particle feels no gradient.
     const double scale = weight_sum > 0.0 ? dimension / weight_sum : 0.0;
@@ -146,9 +188,8 @@ void mps_depth_gradient(SweParticles& p, const neighbors::NeighborList& nl, cons
 
 }  // namespace
 
-void depth_gradient(GradientVariant variant, SweParticles& p,
-                    const neighbors::NeighborList& nl, const Kernel& w, std::span<double> gx,
-                    std::span<double> gy) {
+void depth_gradient(GradientVariant variant, SweParticles& p, const neighbors::NeighborList& nl,
+                    const Kernel& w, std::span<double> gx, std::span<double> gy) {
   switch (variant) {
     case GradientVariant::summation: summation_gradient(p, nl, w, gx, gy); return;
     case GradientVariant::mps: mps_depth_gradient(p, nl, w, gx, gy); return;

@@ -10,6 +10,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Cells half as wide as the support for the neighbour search: about 40 candidates per
+// particle instead of 57 for some 20 neighbours (neighbors/cell_list.hpp).
+constexpr int kCellSubdivisions = 2;
+
 // Adds the time since `start` to `total` when it goes out of scope.
 class ScopedTimer {
  public:
@@ -149,7 +153,7 @@ void Simulation::update_fields() {
   {
     ScopedTimer timer(phase_times_.neighbors);
     const auto coords = positions(particles_, particles_.size());
-    cells_.build(coords, kernel_.support());
+    cells_.build(coords, kernel_.support(), kCellSubdivisions);
     build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
                            neighbor_list_);
   }

@@ -21,12 +21,20 @@ using Coordinates = std::array<std::span<const double>, Dim>;
 template <int Dim>
 class CellList {
  public:
-  // Bins `coords` (Dim arrays of equal length) into cells of width >= min_cell_width.
-  void build(const Coordinates<Dim>& coords, double min_cell_width);
+  // Bins `coords` (Dim arrays of equal length) into cells of width >= search_radius /
+  // subdivisions; the candidates of a point are then the points in the block of cells
+  // `subdivisions` deep around its own, which holds every point within search_radius. Finer
+  // cells fit that disc more tightly: with 2 subdivisions a 2D query tests 31 % fewer
+  // candidates (a 5 x 5 block of half-width cells against 3 x 3 full ones), at the price of
+  // more, shorter runs.
+  void build(const Coordinates<Dim>& coords, double search_radius, int subdivisions = 1);
 
   std::size_t point_count() const { return order_.size(); }
   std::size_t cell_count() const { return cell_start_.empty() ? 0 : cell_start_.size() - 1; }
   double cell_width() const { return cell_width_; }
+  // Every point within this distance of a query point is among its candidates (>= the
+  // search radius asked for; more when few points forced wider cells).
+  double search_radius() const { return cell_width_ * reach_; }
   // Point indices sorted by cell (row-major cell order, x fastest).
   std::span<const std::uint32_t> order() const { return order_; }
   // Coordinate d of point order()[k] at k: a copy in cell order, so that a loop over the
@@ -63,16 +71,16 @@ class CellList {
   }
 
  private:
-  // Calls run(first, last) for each run of consecutive cells (a row of up to three) that
-  // makes up the 3^Dim block around `point`'s cell, clipped to the grid.
+  // Calls run(first, last) for each run of consecutive cells (a row of up to 2 reach + 1) that
+  // makes up the (2 reach + 1)^Dim block around `point`'s cell, clipped to the grid.
   template <class Run>
   void for_each_cell_run(const std::array<double, Dim>& point, Run&& run) const {
     std::array<std::int64_t, Dim> c{};
     for (int d = 0; d < Dim; ++d) c[d] = cell_coordinate(point[d], d);
     std::array<std::int64_t, Dim> lo{}, hi{};
     for (int d = 0; d < Dim; ++d) {
-      lo[d] = std::max<std::int64_t>(c[d] - 1, 0);
-      hi[d] = std::min<std::int64_t>(c[d] + 1, cells_[d] - 1);
+      lo[d] = std::max<std::int64_t>(c[d] - reach_, 0);
+      hi[d] = std::min<std::int64_t>(c[d] + reach_, cells_[d] - 1);
       if (lo[d] > hi[d]) return;  // point far outside the binned box: no candidates
     }
     if constexpr (Dim == 1) {
@@ -99,18 +107,20 @@ class CellList {
     for (std::uint32_t k = begin; k < end; ++k) f(order_[k]);
   }
 
-  // Cell of a query point, clamped to one cell outside the binned box on either side:
+  // Cell of a query point, clamped to reach + 1 cells outside the binned box on either side:
   // a point further out has no candidates, one just outside still sees the edge cells.
   std::int64_t cell_coordinate(double value, int d) const {
     const double c = std::floor((value - origin_[d]) / cell_width_);
-    if (!(c > -2.0)) return -2;  // also catches NaN
-    if (c > static_cast<double>(cells_[d])) return cells_[d] + 1;
+    const auto outside = static_cast<double>(reach_ + 1);
+    if (!(c > -outside)) return -(reach_ + 1);  // also catches NaN
+    if (c > static_cast<double>(cells_[d] - 1) + outside) return cells_[d] + reach_;
     return static_cast<std::int64_t>(c);
   }
 
   std::array<double, Dim> origin_{};
   std::array<std::int64_t, Dim> cells_{};
   double cell_width_ = 1.0;
+  std::int64_t reach_ = 1;  // cells searched on each side of a query point's cell
   std::vector<std::uint32_t> cell_start_;  // size cell_count + 1
   std::vector<std::uint32_t> order_;
   std::array<std::vector<double>, Dim> cell_ordered_;

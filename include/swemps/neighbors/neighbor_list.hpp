@@ -1,9 +1,11 @@
 #pragma once
 // Neighbour lists in compressed-row form: for each target point i, the indices j != i of
-// all points closer than a radius, with their distances. Built once per step from a CellList
-// and reused by every particle loop of that step: the distance is kept because every kernel
-// sum needs it, and a square root per pair per sum cost more than storing it. The order
-// inside a row follows the cell list, so it is the same for any thread count.
+// all points closer than a radius. Built once per step from a CellList and reused by every
+// particle loop of that step. Distances are not kept: with 20 to 80 neighbours a row of
+// doubles is 160 to 640 bytes per particle, and reading it back from memory was no faster than
+// recomputing the distance from the neighbours' positions, which the sums read anyway
+// (docs/performance.md). The order inside a row follows the cell list, so it is the same for
+// any thread count.
 
 #include <cstddef>
 #include <cstdint>
@@ -17,14 +19,10 @@ namespace swemps::neighbors {
 struct NeighborList {
   std::vector<std::uint32_t> offsets;  // row i is index[offsets[i] .. offsets[i+1])
   std::vector<std::uint32_t> index;
-  std::vector<double> distance;  // |x_j - x_i| for index[k], at the same k
 
   std::size_t row_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   std::span<const std::uint32_t> row(std::size_t i) const {
     return {index.data() + offsets[i], index.data() + offsets[i + 1]};
-  }
-  std::span<const double> row_distances(std::size_t i) const {
-    return {distance.data() + offsets[i], distance.data() + offsets[i + 1]};
   }
 };
 
