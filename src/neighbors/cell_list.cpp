@@ -3,6 +3,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "swemps/neighbors/parallel.hpp"
+
 namespace swemps::neighbors {
 
 template <int Dim>
@@ -47,8 +49,8 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double search_radius, 
   // A few far-flung points must not make the grid huge: widen cells until there are at
   // most a few cells per point. Wider cells only add candidates, never lose neighbours.
   // Cells a hair wider than asked: (x - origin) / width is rounded, so two points closer
-  // than `reach` widths could otherwise land reach + 1 cells apart. 1e-8 covers the rounding of cell
-  // coordinates up to ~1e7 cells along an axis.
+  // than `reach` widths could otherwise land reach + 1 cells apart. 1e-8 covers the rounding of
+  // cell coordinates up to ~1e7 cells along an axis.
   cell_width_ = min_cell_width * (1.0 + 1e-8);
   const double max_cells = 4.0 * static_cast<double>(n) + 1024.0;
   for (;;) {
@@ -65,9 +67,10 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double search_radius, 
   }
 
   // Counting sort by cell: stable, so points keep their relative order inside a cell.
+  // The cell of every point in parallel; the counting itself stays serial (it is a few
+  // percent of the build, and a parallel histogram would need one per thread).
   std::vector<std::uint32_t> cell_of(n);
-  cell_start_.assign(total_cells + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  parallel_for(n, [&](std::size_t i) {
     std::size_t index = 0;
     for (int d = Dim - 1; d >= 0; --d) {
       auto c = static_cast<std::int64_t>((coords[d][i] - origin_[d]) / cell_width_);
@@ -75,15 +78,16 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double search_radius, 
       index = index * static_cast<std::size_t>(cells_[d]) + static_cast<std::size_t>(c);
     }
     cell_of[i] = static_cast<std::uint32_t>(index);
-    ++cell_start_[index + 1];
-  }
+  });
+  cell_start_.assign(total_cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of[i] + 1];
   for (std::size_t c = 0; c < total_cells; ++c) cell_start_[c + 1] += cell_start_[c];
   order_.resize(n);
   std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
   for (int d = 0; d < Dim; ++d) {
     cell_ordered_[d].resize(n);
-    for (std::size_t k = 0; k < n; ++k) cell_ordered_[d][k] = coords[d][order_[k]];
+    parallel_for(n, [&](std::size_t k) { cell_ordered_[d][k] = coords[d][order_[k]]; });
   }
 }
 

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "swemps/neighbors/parallel.hpp"
+
 namespace swemps::particles {
 
 namespace {
@@ -13,7 +15,7 @@ namespace {
 template <typename T>
 void permute(std::vector<T>& field, std::span<const std::uint32_t> order, std::vector<T>& scratch) {
   scratch.resize(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = field[order[k]];
+  parallel_for(order.size(), [&](std::size_t k) { scratch[k] = field[order[k]]; });
   field.swap(scratch);
 }
 

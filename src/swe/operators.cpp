@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "swemps/neighbors/cell_list.hpp"
 #include "swemps/neighbors/parallel.hpp"
@@ -197,10 +198,17 @@ void depth_gradient(GradientVariant variant, SweParticles& p, const neighbors::N
 }
 
 TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, double cfl) {
+  // The step of every particle in parallel (two square roots and a division each), then one
+  // serial scan for the smallest, which keeps the limiting particle the same for any number
+  // of threads.
+  std::vector<double> step(p.fluid_count());
+  parallel_for(p.fluid_count(), [&](std::size_t i) {
+    const double speed = std::sqrt(gravity_m_s2 * p.depth[i]) + distance(p.u[i], p.v[i]);
+    step[i] = cfl * std::sqrt(p.area[i]) / speed;
+  });
   TimeStepLimit limit{std::numeric_limits<double>::infinity(), 0};
   for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-    const double speed = std::sqrt(gravity_m_s2 * p.depth[i]) + std::hypot(p.u[i], p.v[i]);
-    const double dt = cfl * std::sqrt(p.area[i]) / speed;
+    const double dt = step[i];
     // A NaN anywhere must surface as the limiting particle, not be skipped by '<'.
     if (!(dt >= limit.dt_s) || std::isnan(dt)) {
       limit = {dt, i};

@@ -4,6 +4,8 @@
 #include <limits>
 #include <sstream>
 
+#include "swemps/neighbors/parallel.hpp"
+
 namespace swemps::swe {
 
 namespace {
@@ -220,28 +222,30 @@ void Simulation::advance(double dt_s) {
     ScopedTimer timer(phase_times_.gradient);
     depth_gradient(settings_.gradient, particles_, neighbor_list_, kernel_, accel_x_, accel_y_);
     const double g = settings_.gravity_m_s2;
-    for (std::size_t i = 0; i < n; ++i) {  // eq 2 with z_s = h on a flat bed
+    parallel_for(n, [&](std::size_t i) {  // eq 2 with z_s = h on a flat bed
       accel_x_[i] *= -g;
       accel_y_[i] *= -g;
-    }
+    });
   }
   run_effects(Stage::forces, dt_s);
   {
     ScopedTimer timer(phase_times_.integrate);
-    for (std::size_t i = 0; i < n; ++i) {
+    parallel_for(n, [&](std::size_t i) {
       particles_.u[i] += dt_s * accel_x_[i];
       particles_.v[i] += dt_s * accel_y_[i];
-    }
+    });
   }
   run_effects(Stage::velocity, dt_s);
   {
     ScopedTimer timer(phase_times_.integrate);
-    old_x_.assign(particles_.x.begin(), particles_.x.begin() + static_cast<std::ptrdiff_t>(n));
-    old_y_.assign(particles_.y.begin(), particles_.y.begin() + static_cast<std::ptrdiff_t>(n));
-    for (std::size_t i = 0; i < n; ++i) {
+    old_x_.resize(n);
+    old_y_.resize(n);
+    parallel_for(n, [&](std::size_t i) {
+      old_x_[i] = particles_.x[i];
+      old_y_[i] = particles_.y[i];
       particles_.x[i] += dt_s * particles_.u[i];
       particles_.y[i] += dt_s * particles_.v[i];
-    }
+    });
   }
   {
     ScopedTimer timer(phase_times_.walls);
