@@ -67,7 +67,9 @@ auto kernel_and_gradient_weights(const Kernel& w) {
     for (std::size_t k = 0; k < b.index.size(); ++k) {
       const double r2 = b.r2[k];
       b.weight[k] = w.w(std::sqrt(r2));
-      b.second_weight[k] = r2 >= coincident_m * coincident_m ? b.weight[k] / r2 : 0.0;
+      // Selects, then one division for every pair: branch-free, so the loop vectorises.
+      const bool distinct = r2 >= coincident_m * coincident_m;
+      b.second_weight[k] = (distinct ? b.weight[k] : 0.0) / (distinct ? r2 : 1.0);
     }
   };
 }
@@ -144,7 +146,9 @@ void summation_gradient(const SweParticles& p, const neighbors::NeighborList& nl
   const auto derivative_over_r = [&w](PairBlock& b) {
     for (std::size_t k = 0; k < b.index.size(); ++k) {
       const double r = std::sqrt(b.r2[k]);
-      b.weight[k] = r >= coincident_m ? w.dw_dr(r) / r : 0.0;
+      const double derivative = w.dw_dr(r);
+      const bool distinct = r >= coincident_m;  // selects, not a branch: see above
+      b.weight[k] = (distinct ? derivative : 0.0) / (distinct ? r : 1.0);
     }
   };
   parallel_for(p.fluid_count(), [&](std::size_t i) {

@@ -44,15 +44,19 @@ class Spiky {
     // (2 r_e - r) / r_e as a product, not a division: w is evaluated for every pair of every
     // sum, and a division costs several multiplications. The difference is taken first so that
     // s is exactly 0 at r = 2 r_e and negative beyond.
+    // Clamped, then cubed: a select of values rather than a branch, so loops over pairs
+    // vectorise.
     const double s = (support_ - r) * inverse_radius_;
-    return s > 0.0 ? normalisation_ * s * s * s : 0.0;
+    const double t = s > 0.0 ? s : 0.0;
+    return normalisation_ * t * t * t;
   }
 
   // dw/dr = -3 c (2 - r/r_e)^2 / r_e; finite (non-zero) at r = 0, which is why the spiky
   // kernel was chosen for gradients: close particles still push each other apart.
   double dw_dr(double r) const {
     const double s = (support_ - r) * inverse_radius_;
-    return s > 0.0 ? -3.0 * normalisation_ * s * s * inverse_radius_ : 0.0;
+    const double t = s > 0.0 ? s : 0.0;
+    return -3.0 * normalisation_ * inverse_radius_ * t * t;
   }
 
  private:
