@@ -58,6 +58,7 @@ class GhostWalls {
   std::vector<WallSegment> segments_;
   std::vector<Line> lines_;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> near_wall_;  // (particle, segment)
+  std::vector<std::uint8_t> near_any_;  // per fluid particle: near some segment (add_ghosts)
 };
 
 }  // namespace swemps::boundaries

@@ -8,11 +8,11 @@
 // splitting, inflow, outflow) is an Effect, called at its stage.
 //
 // One step, and why in this order:
-//  1. refresh(): sort fluid particles by cell (neighbours near in memory), take r_e from
-//     the largest area of the previous summation (eq 9: one radius for all, so forces are
-//     symmetric), add wall ghosts, build the neighbour list, sum depth (eq 7) and A = V/h,
-//     copy them to the ghosts. Then resolution-stage effects (splitting); if they changed
-//     the particles, all of this once more. refresh() is also what output calls, so the
+//  1. refresh(): sort fluid particles by cell every few steps (neighbours near in memory),
+//     take r_e from the largest area of the previous summation (eq 9: one radius for all, so
+//     forces are symmetric), add wall ghosts, build the neighbour list, sum depth (eq 7) and
+//     A = V/h, copy them to the ghosts. Then resolution-stage effects (splitting); if they
+//     changed the particles, all of this once more. refresh() is also what output calls, so the
 //     fields written at time t are those the next step uses.
 //  2. dt from CFL (eq 13) on the fresh depth and area.
 //  3. a = -g grad h (the chosen variant), then forces-stage effects add to a.
@@ -111,7 +111,9 @@ class Simulation {
   std::vector<EffectTime> effect_times() const;
 
  private:
-  void update_fields();  // refresh() without the resolution stage
+  // refresh() without the resolution stage; `sort`: sort the particles by cell first.
+  void update_fields(bool sort);
+  bool sorting_due() const;
   void sort_by_cell();
   double effects_time_step_limit() const;
   void run_effects(Stage stage, double dt_s);
@@ -130,6 +132,7 @@ class Simulation {
   PhaseTimes phase_times_;
   double time_s_ = 0.0;
   std::size_t steps_ = 0, particle_steps_ = 0, wall_reflections_ = 0;
+  std::size_t last_sort_step_ = 0, sorted_count_ = 0;  // when the particles were last sorted
   bool fresh_ = false;
 };
 
