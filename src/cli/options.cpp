@@ -10,6 +10,7 @@ std::string usage_text() {
 Usage:
   swe-mps run SCENARIO.json [options]
   swe-mps compare SCENARIO.json [options]
+  swe-mps study STUDY.json [options]
   swe-mps --help | --version
 
 Commands:
@@ -17,12 +18,18 @@ Commands:
   compare   run the scene as shallow water and as 3D Navier-Stokes (its "ns" block) and
             write both maps, the Navier-Stokes series and both surge fronts beside
             Ritter's: STEM.swe.nc, STEM.ns.nc, STEM.ns.series.csv, STEM.fronts.csv
+  study     run a scene once for every combination of the numerical knobs a study file
+            lists (spacing, splitting, gradient, cfl, alpha_e), each in its own process,
+            and tabulate each run's cost and its error against Ritter's solution (CSV)
 
 Options:
   -o, --output PATH   run: write the netCDF result to PATH instead of the scene's
                       output.path; compare: the STEM of its files (default: output.path
-                      without its extension)
-  -t, --threads N     OpenMP threads (default: all cores; results do not depend on N)
+                      without its extension); study: the CSV table (default: the study
+                      file's output)
+  -t, --threads N     OpenMP threads (default: all cores; results do not depend on N);
+                      study: threads per run (default: cores / jobs)
+  -j, --jobs N        study: runs at once (default: the study file's jobs, or one per core)
   -q, --quiet         warnings and errors only, no progress
   -v, --verbose       debug messages
   -h, --help          this text
@@ -36,11 +43,12 @@ Exit status: 0 done; 2 bad command line or scenario; 3 the simulation broke down
 
 namespace {
 
-int parse_threads(const std::string& text) {
+// A whole number from 1 to 1024, the value of option `name`.
+int parse_count(const std::string& name, const std::string& text) {
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec != std::errc() || end != text.data() + text.size() || value < 1 || value > 1024) {
-    throw UsageError("--threads expects a whole number from 1 to 1024, found '" + text + "'");
+    throw UsageError(name + " expects a whole number from 1 to 1024, found '" + text + "'");
   }
   return value;
 }
@@ -64,7 +72,9 @@ Options parse_options(const std::vector<std::string>& args) {
     } else if (arg == "-o" || arg == "--output") {
       options.output = value(arg);
     } else if (arg == "-t" || arg == "--threads") {
-      options.threads = parse_threads(value(arg));
+      options.threads = parse_count("--threads", value(arg));
+    } else if (arg == "-j" || arg == "--jobs") {
+      options.jobs = parse_count("--jobs", value(arg));
     } else if (arg == "-q" || arg == "--quiet") {
       options.verbosity = Verbosity::quiet;
     } else if (arg == "-v" || arg == "--verbose") {
@@ -72,8 +82,8 @@ Options parse_options(const std::vector<std::string>& args) {
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' (see swe-mps --help)");
     } else if (options.command.empty()) {
-      if (arg != "run" && arg != "compare") {
-        throw UsageError("unknown command '" + arg + "' (the commands are: run, compare)");
+      if (arg != "run" && arg != "compare" && arg != "study") {
+        throw UsageError("unknown command '" + arg + "' (the commands are: run, compare, study)");
       }
       options.command = arg;
     } else if (options.scenario.empty()) {
@@ -84,7 +94,8 @@ Options parse_options(const std::vector<std::string>& args) {
   }
   if (options.command.empty()) throw UsageError("no command given (see swe-mps --help)");
   if (options.scenario.empty()) {
-    throw UsageError("'" + options.command + "' expects a scenario file");
+    throw UsageError("'" + options.command + "' expects a " +
+                     (options.command == "study" ? "study" : "scenario") + " file");
   }
   return options;
 }

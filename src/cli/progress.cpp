@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 namespace swemps::cli {
 
@@ -66,6 +67,64 @@ void Progress::update(double time_s, std::size_t steps, std::size_t particles) {
 }
 
 void Progress::finish() {
+  if (enabled_ && terminal_ && drawn_) {
+    std::fputc('\n', stream_);
+    std::fflush(stream_);
+  }
+}
+
+SweepProgress::SweepProgress(std::vector<double> run_costs, bool enabled, std::FILE* stream)
+    : run_costs_(std::move(run_costs)),
+      enabled_(enabled),
+      terminal_(isatty(fileno(stream)) != 0),
+      stream_(stream),
+      start_(Clock::now()),
+      last_draw_(start_) {
+  for (const double c : run_costs_) total_cost_ += c;
+}
+
+std::string SweepProgress::counts() const {
+  const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+  const double fraction = total_cost_ > 0.0 ? done_cost_ / total_cost_ : 0.0;
+  const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : -1.0;
+  return std::to_string(done_) + "/" + std::to_string(run_costs_.size()) + " runs  elapsed " +
+         clock_text(elapsed) + "  left " + clock_text(left);
+}
+
+void SweepProgress::draw_bar(std::size_t running) {
+  constexpr int width = 30;
+  const double fraction = run_costs_.empty()
+                              ? 1.0
+                              : static_cast<double>(done_) / static_cast<double>(run_costs_.size());
+  std::string bar(static_cast<std::size_t>(fraction * width), '#');
+  bar.resize(width, ' ');
+  std::fprintf(stream_, "\r[%s] %s  %zu running ", bar.c_str(), counts().c_str(), running);
+  std::fflush(stream_);
+  last_draw_ = Clock::now();
+  drawn_ = true;
+}
+
+void SweepProgress::tick(std::size_t running) {
+  if (!enabled_ || !terminal_) return;
+  if (Clock::now() - last_draw_ < std::chrono::milliseconds(200)) return;
+  draw_bar(running);
+}
+
+void SweepProgress::finished(std::size_t run, const std::string& what, std::size_t running) {
+  ++done_;
+  if (run < run_costs_.size()) done_cost_ += run_costs_[run];
+  if (!enabled_) return;
+  if (terminal_) {
+    // Clears the bar (ESC [ K: to the end of the line), writes the run's line, redraws.
+    std::fprintf(stream_, "\r\033[K%s\n", what.c_str());
+    draw_bar(running);
+  } else {
+    std::fprintf(stream_, "%s  [%s]\n", what.c_str(), counts().c_str());
+    std::fflush(stream_);
+  }
+}
+
+void SweepProgress::finish() {
   if (enabled_ && terminal_ && drawn_) {
     std::fputc('\n', stream_);
     std::fflush(stream_);

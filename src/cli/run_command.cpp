@@ -6,6 +6,7 @@
 
 #include "swemps/cli/compare_command.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/study_command.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace swemps::cli {
@@ -13,6 +14,10 @@ namespace swemps::cli {
 void run(const Options& options, const std::string& command_line) {
   if (options.command == "compare") {
     compare(options, command_line);
+    return;
+  }
+  if (options.command == "study") {
+    study(options, command_line);
     return;
   }
   auto scene = scenario::load(options.scenario);

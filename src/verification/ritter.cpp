@@ -21,6 +21,22 @@ double ritter_velocity(const RitterProblem& p, double x, double t) {
   return 2.0 / 3.0 * (xi + c0);  // eq 14
 }
 
+Profile channel_profile(const particles::SweParticles& p, const swe::Kernel& kernel,
+                        const Channel& channel, double dx_m) {
+  const auto nx = static_cast<std::size_t>(std::round((channel.x_max_m - channel.x_min_m) / dx_m));
+  const auto ny = static_cast<std::size_t>(std::round((channel.y_max_m - channel.y_min_m) / dx_m));
+  const swe::RegularGrid grid{
+      channel.x_min_m + dx_m / 2, channel.y_min_m + dx_m / 2, dx_m, dx_m, nx, ny};
+  const auto depth = swe::depth_on_grid(p, kernel, grid);
+  Profile profile{grid.x0, dx_m, std::vector<double>(nx, 0.0)};
+  for (std::size_t k = 0; k < ny; ++k) {
+    for (std::size_t i = 0; i < nx; ++i) {
+      profile.depth_m[i] += depth[k * nx + i] / static_cast<double>(ny);
+    }
+  }
+  return profile;
+}
+
 RitterErrors compare_with_ritter(const RitterProblem& p, const Profile& profile, double t,
                                  double front_threshold) {
   const double c0 = std::sqrt(p.gravity_m_s2 * p.initial_depth_m);

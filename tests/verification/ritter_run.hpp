@@ -32,16 +32,8 @@ inline scenario::Scenario ritter_scene() {
 inline verification::Profile channel_profile(const swe::Simulation& sim,
                                              const scenario::Scenario& scene, double spacing_m) {
   const auto& d = scene.domain;
-  const double dx = spacing_m / 4.0;
-  const auto nx = static_cast<std::size_t>(std::round((d.x_max - d.x_min) / dx));
-  const auto ny = static_cast<std::size_t>(std::round((d.y_max - d.y_min) / dx));
-  const swe::RegularGrid grid{d.x_min + dx / 2, d.y_min + dx / 2, dx, dx, nx, ny};
-  const auto depth = swe::depth_on_grid(sim.particles(), sim.kernel(), grid);
-  verification::Profile profile{grid.x0, dx, std::vector<double>(nx, 0.0)};
-  for (std::size_t k = 0; k < ny; ++k)
-    for (std::size_t i = 0; i < nx; ++i)
-      profile.depth_m[i] += depth[k * nx + i] / static_cast<double>(ny);
-  return profile;
+  return verification::channel_profile(sim.particles(), sim.kernel(),
+                                       {d.x_min, d.x_max, d.y_min, d.y_max}, spacing_m / 4.0);
 }
 
 // The scene as it is, but for the spacing and (if given) the gradient variant.

@@ -12,12 +12,13 @@ namespace swemps::cli {
 enum class Verbosity { quiet, normal, verbose };
 
 struct Options {
-  std::string command;  // "run", "compare", or "help" / "version"
-  std::filesystem::path scenario;
+  std::string command;             // "run", "compare", "study", or "help" / "version"
+  std::filesystem::path scenario;  // the scene; for study, the study file
   // -o: run writes here instead of the scene's output path; compare takes it as the stem of
-  // its files.
+  // its files; study writes its table here.
   std::optional<std::filesystem::path> output;
-  int threads = 0;  // 0: OpenMP's default
+  int threads = 0;  // 0: OpenMP's default; study: threads per run, 0: cores / jobs
+  int jobs = 0;     // study: runs at once; 0: the study file's, or one per core
   Verbosity verbosity = Verbosity::normal;
 };
 

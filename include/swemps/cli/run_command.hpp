@@ -1,6 +1,7 @@
 #pragma once
 // The swe-mps commands: `run` (scenario file -> simulation of the scene's model -> netCDF
-// output, with progress and a summary) and `compare` (compare_command.hpp).
+// output, with progress and a summary), `compare` (compare_command.hpp) and `study`
+// (study_command.hpp).
 
 #include <string>
 

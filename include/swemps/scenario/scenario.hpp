@@ -174,16 +174,19 @@ struct Scenario {
 };
 
 // A problem in a scenario file: where (JSON path such as /water/0/depth), what was found,
-// what was expected. what() gives all three in one line.
+// what was expected. what() gives all three in one line, opening with the kind of document
+// ("scenario error at ..."; "study error at ..." for a study file).
 class ScenarioError : public std::runtime_error {
  public:
-  ScenarioError(std::string json_path, std::string found, std::string expected);
+  ScenarioError(std::string json_path, std::string found, std::string expected,
+                std::string document = "scenario");
   const std::string& json_path() const { return json_path_; }
   const std::string& found() const { return found_; }
   const std::string& expected() const { return expected_; }
+  const std::string& document() const { return document_; }
 
  private:
-  std::string json_path_, found_, expected_;
+  std::string json_path_, found_, expected_, document_;
 };
 
 // Reads and validates a scenario file. Relative paths inside it are taken relative to the

@@ -5,6 +5,9 @@
 #include <cstddef>
 #include <vector>
 
+#include "swemps/particles/swe_particles.hpp"
+#include "swemps/swe/operators.hpp"
+
 namespace swemps::verification {
 
 struct RitterProblem {
@@ -23,6 +26,17 @@ struct Profile {
   double x0_m, dx_m;
   std::vector<double> depth_m;
 };
+
+// The rectangle a channel profile is taken over, in m.
+struct Channel {
+  double x_min_m, x_max_m, y_min_m, y_max_m;
+};
+
+// The depth along a channel: eq 7 evaluated at the cell centres of a grid of square cells of
+// side dx_m covering the channel, averaged across it (y). A grid finer than the particles
+// (dx = spacing / 4 in the verification) samples the summed depth between them too.
+Profile channel_profile(const particles::SweParticles& p, const swe::Kernel& kernel,
+                        const Channel& channel, double dx_m);
 
 struct RitterErrors {
   double fan_l1;    // (1/L) integral over the fan of |h - h_R| dx, / h0

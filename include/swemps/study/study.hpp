@@ -1,0 +1,105 @@
+#pragma once
+// An accuracy-cost study: one scene run many times with its numerical knobs (particle spacing,
+// splitting, gradient variant, Courant number, support radius) set to every combination of
+// the values listed, each run's depth measured against an analytic solution at the scene's
+// end time. What runs the combinations (processes, timing, the table) is the study command;
+// this module says what the runs are and what each one measures. No file formats here: the
+// study file is read by scenario::load_study.
+
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "swemps/scenario/scenario.hpp"
+#include "swemps/swe/settings.hpp"
+#include "swemps/swe/simulation.hpp"
+#include "swemps/verification/ritter.hpp"
+
+namespace swemps::study {
+
+// Splitting as a knob: off, or on with this area-ratio threshold.
+struct SplittingChoice {
+  std::optional<double> area_ratio_threshold;  // absent: no splitting
+};
+
+// One run's knobs. Each one absent means "as the scene has it".
+struct RunKnobs {
+  std::optional<double> spacing_m;  // of every water body
+  std::optional<SplittingChoice> splitting;
+  std::optional<swe::GradientVariant> gradient;
+  std::optional<double> cfl;
+  std::optional<double> alpha_e;
+};
+
+// The values each knob takes; an empty axis is not swept (the scene's value is kept).
+struct Sweep {
+  std::vector<double> spacing_m;
+  std::vector<SplittingChoice> splitting;
+  std::vector<swe::GradientVariant> gradient;
+  std::vector<double> cfl;
+  std::vector<double> alpha_e;
+};
+
+// Ritter's dam break as the reference; gravity is the scene's.
+struct RitterReference {
+  double dam_x_m = 0.0;
+  double initial_depth_m = 0.0;  // h0; errors are relative to it
+  double reservoir_start_x_m = 0.0;
+};
+
+struct Study {
+  std::filesystem::path scene;  // the scenario file every run starts from (absolute)
+  RitterReference reference;
+  Sweep sweep;
+  // The profile the errors are measured on has cells of side spacing / this ratio.
+  double profile_spacing_ratio = 4.0;
+  std::optional<int> jobs;  // runs at once; absent: one per core
+  // A run still going after this many seconds is stopped and recorded as "timeout", so that
+  // one run whose time step collapses cannot hold the study up for hours. Absent: no limit.
+  std::optional<double> run_time_limit_s;
+  std::filesystem::path output;  // the CSV table (absolute)
+};
+
+// Every combination of the sweep's values, the first axis (spacing) slowest and the last
+// (alpha_e) fastest, in the order the values are listed. A study with no axis swept has one
+// run: the scene as it is.
+std::vector<RunKnobs> expand(const Sweep& sweep);
+
+// Sets the knobs that are given on a loaded scene. Splitting on keeps the scene's other
+// splitting settings (or the defaults when it has none) and sets the threshold.
+void apply(const RunKnobs& knobs, scenario::Scenario& scene);
+
+// The particle spacing a run of the scene has: the finest of its water bodies (0 without any).
+double finest_spacing(const scenario::Scenario& scene);
+
+// What a finished run measures, besides its cost.
+struct RunMeasures {
+  std::size_t particles_end = 0;
+  std::size_t steps = 0, particle_steps = 0;
+  double relative_volume_change = 0.0;
+  verification::RitterErrors errors{};
+};
+
+// The run's state at the scene's end time (refreshed) against Ritter's solution, on the
+// profile along the scene's domain with cells of finest_spacing / profile_spacing_ratio.
+RunMeasures measure(const swe::Simulation& simulation, const scenario::Scenario& scene,
+                    const RitterReference& reference, double profile_spacing_ratio);
+
+// A run's cost and error, for the Pareto front.
+struct CostError {
+  double cost = 0.0;   // wall time, s
+  double error = 0.0;  // fan L1 / h0
+};
+
+// The runs no other run beats: none costs no more and errs no more while being better in one
+// of the two. Runs whose cost or error is not finite (broken down) are left out; equal runs
+// are all kept. Indices into `runs`, cheapest first.
+std::vector<std::size_t> pareto_front(const std::vector<CostError>& runs);
+
+// Names for the table and messages: "mps" / "summation"; "off" or the threshold.
+std::string gradient_name(swe::GradientVariant gradient);
+std::string describe(const RunKnobs& knobs);  // "spacing 0.05 m, splitting 1.5, mps"
+
+}  // namespace swemps::study

@@ -1,0 +1,565 @@
+// swe-mps study: the runs of a sweep in child processes, a CSV row each, a Pareto front.
+//
+// Why processes and not threads: each run then has its own peak memory (the kernel's
+// ru_maxrss of the child), a run that crashes or breaks down leaves the others running, and
+// every run gets the OpenMP threads it is given. OpenMP's thread pool does not survive fork(),
+// so the parent runs no OpenMP region at all: it reads files, forks and waits.
+
+#include "swemps/cli/study_command.hpp"
+
+#include <omp.h>
+#include <sched.h>
+#include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <sstream>
+#include <thread>
+#include <vector>
+
+#include "swemps/cli/progress.hpp"
+#include "swemps/cli/run_command.hpp"
+#include "swemps/cli/timing.hpp"
+#include "swemps/scenario/build.hpp"
+#include "swemps/scenario/scenario.hpp"
+#include "swemps/scenario/study_file.hpp"
+#include "swemps/study/study.hpp"
+#include "swemps/swe/simulation.hpp"
+
+namespace swemps::cli {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------------------------
+// What a run reports
+
+// What a child sends back about its run. Counts are doubles so that every field can be
+// unknown (NaN): a run that broke down has no errors, one that failed to build no steps.
+struct RunRecord {
+  std::string status = "failed";  // "ok", "breakdown", "failed" (or "timeout", set by the parent)
+  std::string message;            // why it did not finish; empty when ok
+  double particles_start = kNaN, particles_end = kNaN;
+  double steps = kNaN, particle_steps = kNaN;
+  double wall_s = kNaN;  // building the simulation and stepping it to the end time
+  double fan_l1 = kNaN, fan_l2 = kNaN, fan_linf = kNaN, upstream_fan_l1 = kNaN;
+  double front_x_m = kNaN, exact_front_x_m = kNaN;
+  double relative_volume_change = kNaN;
+};
+
+// The record's numbers by name: the pipe's format and the table's columns both come from it.
+struct NumberField {
+  const char* name;
+  double RunRecord::*member;
+};
+constexpr std::array kCountFields{
+    NumberField{"particles_start", &RunRecord::particles_start},
+    NumberField{"particles_end", &RunRecord::particles_end},
+    NumberField{"steps", &RunRecord::steps},
+    NumberField{"particle_steps", &RunRecord::particle_steps},
+    NumberField{"wall_s", &RunRecord::wall_s},
+};
+constexpr std::array kErrorFields{
+    NumberField{"fan_l1", &RunRecord::fan_l1},
+    NumberField{"fan_l2", &RunRecord::fan_l2},
+    NumberField{"fan_linf", &RunRecord::fan_linf},
+    NumberField{"upstream_fan_l1", &RunRecord::upstream_fan_l1},
+    NumberField{"front_x_m", &RunRecord::front_x_m},
+    NumberField{"exact_front_x_m", &RunRecord::exact_front_x_m},
+};
+constexpr NumberField kVolumeField{"relative_volume_change", &RunRecord::relative_volume_change};
+
+template <class Visit>
+void for_each_number(Visit&& visit) {
+  for (const auto& f : kCountFields) visit(f);
+  for (const auto& f : kErrorFields) visit(f);
+  visit(kVolumeField);
+}
+
+// The record as "name value" lines; the message last, made one line.
+std::string encode(const RunRecord& r) {
+  std::string text = "status " + r.status + "\n";
+  for_each_number(
+      [&](const NumberField& f) { text += fmt::format("{} {:.17g}\n", f.name, r.*f.member); });
+  std::string message = r.message;
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return text + "message " + message + "\n";
+}
+
+// A record from encode()'s text; an empty or cut text leaves the fields it lacks unknown.
+std::optional<RunRecord> decode(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  RunRecord r;
+  std::istringstream lines(text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const auto space = line.find(' ');
+    if (space == std::string::npos) continue;
+    const std::string key = line.substr(0, space), value = line.substr(space + 1);
+    if (key == "status") r.status = value;
+    if (key == "message") r.message = value;
+    for_each_number([&](const NumberField& f) {
+      if (key == f.name) r.*f.member = std::strtod(value.c_str(), nullptr);
+    });
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One run, in the child
+
+void record_errors(const study::RunMeasures& m, RunRecord& r) {
+  r.fan_l1 = m.errors.fan_l1;
+  r.fan_l2 = m.errors.fan_l2;
+  r.fan_linf = m.errors.fan_linf;
+  r.upstream_fan_l1 = m.errors.upstream_fan_l1;
+  r.front_x_m = m.errors.front_x_m;
+  r.exact_front_x_m = m.errors.exact_front_x_m;
+}
+
+void record_progress(const swe::Simulation& sim, RunRecord& r) {
+  r.particles_end = static_cast<double>(sim.particles().fluid_count());
+  r.steps = static_cast<double>(sim.steps());
+  r.particle_steps = static_cast<double>(sim.particle_steps());
+  r.relative_volume_change = sim.relative_volume_change();
+}
+
+// The scene (knobs applied) from t = 0 to its end time, measured against the reference.
+// A breakdown or failure is recorded with how far the run got.
+RunRecord run_scene(const scenario::Scenario& scene, const study::Study& study) {
+  RunRecord r;
+  std::optional<swe::Simulation> sim;
+  const auto start = Clock::now();
+  try {
+    sim.emplace(scenario::make_simulation(scene));
+    r.particles_start = static_cast<double>(sim->particles().fluid_count());
+    sim->advance_to(scene.end_time_s);
+    sim->refresh();
+    r.wall_s = seconds_since(start);
+    record_progress(*sim, r);
+    record_errors(study::measure(*sim, scene, study.reference, study.profile_spacing_ratio), r);
+    r.status = "ok";
+    return r;
+  } catch (const swe::SimulationError& e) {
+    r.status = "breakdown";
+    r.message = e.what();
+  } catch (const std::exception& e) {
+    r.status = "failed";
+    r.message = e.what();
+  }
+  r.wall_s = seconds_since(start);
+  if (sim) record_progress(*sim, r);
+  return r;
+}
+
+void write_all(int fd, const std::string& text) {
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;  // the parent is gone; nobody to tell
+    written += static_cast<std::size_t>(n);
+  }
+}
+
+// The child's whole life: never returns, and leaves through _exit so that nothing the parent
+// set up (buffered output, atexit handlers, the partial table) is flushed or run twice.
+[[noreturn]] void child_main(const scenario::Scenario& scene, const study::Study& study,
+                             int threads, int result_fd, pid_t parent) {
+  // A study stopped by a signal to its parent alone stops its runs too, rather than leaving
+  // them to run on unseen. The parent may have gone before the request took effect.
+  ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+  if (::getppid() != parent) ::_exit(1);
+  try {
+    omp_set_num_threads(threads);
+    spdlog::set_level(spdlog::level::warn);  // the parent reports each run
+    write_all(result_fd, encode(run_scene(scene, study)));
+    ::close(result_fd);
+    ::_exit(0);
+  } catch (...) {
+    ::_exit(1);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The runs, in the parent
+
+struct PlannedRun {
+  study::RunKnobs knobs;
+  scenario::Scenario scene;  // the base scene with the knobs applied
+  double expected_cost = 1.0;
+};
+
+// Particles go as spacing^-2 in the plane and steps as 1 / (spacing cfl) (eq 13): the relative
+// cost the progress estimate weighs runs by, and the order they start in.
+double expected_cost(const scenario::Scenario& scene) {
+  const double spacing = study::finest_spacing(scene);
+  if (!(spacing > 0.0)) return 1.0;
+  return 1.0 / (spacing * spacing * spacing * scene.numerics.cfl);
+}
+
+std::vector<PlannedRun> plan_runs(const study::Study& study, const scenario::Scenario& base) {
+  std::vector<PlannedRun> runs;
+  for (const study::RunKnobs& knobs : study::expand(study.sweep)) {
+    PlannedRun run{knobs, base, 1.0};
+    study::apply(knobs, run.scene);
+    run.expected_cost = expected_cost(run.scene);
+    runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+// Most expensive first, so that the last runs going are short ones and no core idles long
+// while one big run finishes.
+std::vector<std::size_t> start_order(const std::vector<PlannedRun>& runs) {
+  std::vector<std::size_t> order(runs.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return runs[a].expected_cost > runs[b].expected_cost;
+  });
+  return order;
+}
+
+// The cores this process may run on (its affinity mask, which a container or taskset may
+// narrow), without touching OpenMP.
+int usable_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+struct Child {
+  pid_t pid;
+  std::size_t run;
+  int result_fd;  // read end of the pipe the record comes through
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  bool stopped = false;  // killed by the parent for running past the study's time limit
+};
+
+Child start_child(const PlannedRun& run, std::size_t index, const study::Study& study,
+                  int threads) {
+  int fds[2];
+  if (::pipe(fds) != 0) {
+    throw std::runtime_error(std::string("cannot make a pipe: ") + std::strerror(errno));
+  }
+  // Text the parent has buffered would be written again by a child that flushes it.
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int err = errno;
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw std::runtime_error(std::string("cannot start a run: fork: ") + std::strerror(err));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    child_main(run.scene, study, threads, fds[1], parent);
+  }
+  ::close(fds[1]);  // so that the read end sees end-of-file once the child is gone
+  return {pid, index, fds[0]};
+}
+
+std::string read_all(int fd) {
+  std::string text;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  return text;
+}
+
+// What the wait status says about a child that sent no record.
+std::string lost_child(int status) {
+  if (WIFSIGNALED(status)) {
+    const int signal = WTERMSIG(status);
+    const char* name = strsignal(signal);
+    return "the run's process was killed by signal " + std::to_string(signal) + " (" +
+           (name ? name : "unknown") + ")" +
+           (signal == SIGKILL ? ", perhaps for want of memory" : "");
+  }
+  return "the run's process exited with status " + std::to_string(WEXITSTATUS(status)) +
+         " without a result";
+}
+
+// A finished run: its record and the peak memory the kernel measured for its process.
+struct Row {
+  RunRecord record;
+  double peak_memory_mib = kNaN;
+};
+
+Row collect(const Child& child, int status, const rusage& usage,
+            std::optional<double> run_time_limit_s) {
+  Row row;
+  const auto record = decode(read_all(child.result_fd));
+  if (record) {
+    row.record = *record;
+  } else if (child.stopped && run_time_limit_s) {
+    row.record.status = "timeout";
+    row.record.message =
+        fmt::format("stopped after the study's run time limit of {:g} s", *run_time_limit_s);
+  } else {
+    row.record.message = lost_child(status);
+  }
+  row.peak_memory_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;  // KiB on Linux
+  return row;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The table
+
+std::string number_text(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.12g}", v); }
+
+// A text field as CSV has it: quoted when it holds a comma, a quote or a line break.
+std::string text_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::vector<std::string> table_columns() {
+  std::vector<std::string> columns{"run",      "spacing_m", "splitting_threshold",
+                                   "gradient", "cfl",       "alpha_e"};
+  for (const auto& f : kCountFields) columns.emplace_back(f.name);
+  columns.emplace_back("peak_memory_mib");
+  for (const auto& f : kErrorFields) columns.emplace_back(f.name);
+  columns.emplace_back("front_error_m");
+  columns.emplace_back(kVolumeField.name);
+  columns.emplace_back("status");
+  columns.emplace_back("message");
+  return columns;
+}
+
+std::string table_line(std::size_t index, const PlannedRun& run, const Row& row) {
+  const auto& scene = run.scene;
+  const RunRecord& r = row.record;
+  std::vector<std::string> fields{
+      std::to_string(index),
+      number_text(study::finest_spacing(scene)),
+      number_text(scene.splitting ? scene.splitting->area_ratio_threshold : kNaN),
+      study::gradient_name(scene.numerics.gradient),
+      number_text(scene.numerics.cfl),
+      number_text(scene.numerics.alpha_e)};
+  for (const auto& f : kCountFields) fields.push_back(number_text(r.*f.member));
+  fields.push_back(number_text(row.peak_memory_mib));
+  for (const auto& f : kErrorFields) fields.push_back(number_text(r.*f.member));
+  fields.push_back(number_text(r.front_x_m - r.exact_front_x_m));
+  fields.push_back(number_text(r.relative_volume_change));
+  fields.push_back(r.status);
+  fields.push_back(text_field(r.message));
+  std::string line;
+  for (std::size_t k = 0; k < fields.size(); ++k) line += (k > 0 ? "," : "") + fields[k];
+  return line + "\n";
+}
+
+// The study's table, rewritten whole into <path>.partial as runs finish (rows in sweep order,
+// finished ones only), so that an interrupted study keeps what it measured. finish() gives it
+// its final name.
+class StudyTable {
+ public:
+  StudyTable(std::filesystem::path path, const std::vector<PlannedRun>& runs)
+      : path_(std::move(path)), runs_(runs), rows_(runs.size()) {
+    partial_path_ = path_;
+    partial_path_ += ".partial";
+    write();  // an unwritable place is found before any run
+  }
+
+  void add(std::size_t run, Row row) {
+    rows_[run] = std::move(row);
+    write();
+  }
+
+  void finish() {
+    std::error_code ec;
+    std::filesystem::rename(partial_path_, path_, ec);
+    if (ec) {
+      throw OutputError("cannot rename '" + partial_path_.string() + "' to '" + path_.string() +
+                        "': " + ec.message());
+    }
+  }
+
+  const std::optional<Row>& row(std::size_t run) const { return rows_[run]; }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  void write() const {
+    std::string text;
+    const auto columns = table_columns();
+    for (std::size_t k = 0; k < columns.size(); ++k) text += (k > 0 ? "," : "") + columns[k];
+    text += "\n";
+    for (std::size_t i = 0; i < rows_.size(); ++i) {
+      if (rows_[i]) text += table_line(i, runs_[i], *rows_[i]);
+    }
+    errno = 0;
+    std::FILE* file = std::fopen(partial_path_.c_str(), "w");
+    if (file == nullptr) {
+      throw OutputError("cannot create the file '" + partial_path_.string() +
+                        "': " + (errno != 0 ? std::strerror(errno) : "unknown reason"));
+    }
+    const bool written = std::fputs(text.c_str(), file) >= 0;
+    if (std::fclose(file) != 0 || !written) {
+      throw OutputError("cannot write to '" + partial_path_.string() + "'");
+    }
+  }
+
+  std::filesystem::path path_, partial_path_;
+  const std::vector<PlannedRun>& runs_;
+  std::vector<std::optional<Row>> rows_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Telling the user
+
+std::string threads_text(int threads) {
+  return std::to_string(threads) + (threads == 1 ? " thread" : " threads");
+}
+
+// "run 3/16 (spacing 0.1 m, mps): ok, 2.31 s, 45 MiB, fan L1 0.0213"
+std::string finished_line(std::size_t run, std::size_t total, const PlannedRun& planned,
+                          const Row& row) {
+  const RunRecord& r = row.record;
+  std::string line =
+      fmt::format("run {}/{} ({}): {}", run + 1, total, study::describe(planned.knobs), r.status);
+  if (!std::isnan(r.wall_s)) line += fmt::format(", {:.3g} s", r.wall_s);
+  line += fmt::format(", {:.0f} MiB", row.peak_memory_mib);
+  if (r.status == "ok") return line + fmt::format(", fan L1 {:.4g}", r.fan_l1);
+  // A breakdown's message is long (particle, position, time); the table has all of it.
+  constexpr std::size_t kShown = 160;
+  return line + ": " +
+         (r.message.size() > kShown ? r.message.substr(0, kShown) + "..." : r.message);
+}
+
+void log_summary(const StudyTable& table, const std::vector<PlannedRun>& runs, double wall_s,
+                 int jobs, int threads) {
+  std::size_t ok = 0, broke_down = 0, failed = 0;
+  std::vector<study::CostError> points;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const RunRecord& r = table.row(i)->record;
+    ok += r.status == "ok";
+    broke_down += r.status == "breakdown";
+    failed += r.status != "ok" && r.status != "breakdown";  // "failed" or "timeout"
+    points.push_back(r.status == "ok" ? study::CostError{r.wall_s, r.fan_l1}
+                                      : study::CostError{kNaN, kNaN});
+  }
+  spdlog::info("study: {} runs ({} ok, {} broke down, {} failed) in {:.1f} s, {} at once, {} each",
+               runs.size(), ok, broke_down, failed, wall_s, jobs, threads_text(threads));
+  spdlog::info(
+      "Pareto front, wall time against fan L1 (no other run is both faster and more "
+      "accurate):");
+  for (const std::size_t i : study::pareto_front(points)) {
+    spdlog::info("  run {:>3}  {:9.3f} s  fan L1 {:.4g}  ({})", i + 1, points[i].cost,
+                 points[i].error, study::describe(runs[i].knobs));
+  }
+  if (broke_down + failed > 0) {
+    spdlog::warn("{} of {} runs did not finish; the table's status and message columns say why",
+                 broke_down + failed, runs.size());
+  }
+  spdlog::info("wrote {}", table.path().string());
+}
+
+// Kills the runs that have gone on past the limit; wait4 then reaps them like any other.
+void stop_overdue(std::vector<Child>& going, std::optional<double> run_time_limit_s) {
+  if (!run_time_limit_s) return;
+  const auto now = std::chrono::steady_clock::now();
+  for (Child& c : going) {
+    if (c.stopped || std::chrono::duration<double>(now - c.started).count() <= *run_time_limit_s)
+      continue;
+    ::kill(c.pid, SIGKILL);
+    c.stopped = true;
+  }
+}
+
+// Runs every planned run, `jobs` at once, each child with `threads` OpenMP threads; rows go
+// into the table as they finish.
+void run_all(const std::vector<PlannedRun>& runs, const study::Study& study, int jobs, int threads,
+             StudyTable& table, SweepProgress& progress) {
+  const std::vector<std::size_t> order = start_order(runs);
+  std::vector<Child> going;
+  std::size_t next = 0, done = 0;
+  while (done < runs.size()) {
+    while (going.size() < static_cast<std::size_t>(jobs) && next < order.size()) {
+      going.push_back(start_child(runs[order[next]], order[next], study, threads));
+      ++next;
+    }
+    int status = 0;
+    rusage usage{};
+    const pid_t pid = ::wait4(-1, &status, WNOHANG, &usage);
+    if (pid < 0 && errno != EINTR) {
+      throw std::runtime_error(std::string("waiting for a run: ") + std::strerror(errno));
+    }
+    const auto child =
+        std::find_if(going.begin(), going.end(), [&](const Child& c) { return c.pid == pid; });
+    if (pid <= 0 || child == going.end()) {
+      stop_overdue(going, study.run_time_limit_s);
+      progress.tick(going.size());
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      continue;
+    }
+    const Child finished = *child;
+    going.erase(child);
+    Row row = collect(finished, status, usage, study.run_time_limit_s);
+    const std::string line = finished_line(finished.run, runs.size(), runs[finished.run], row);
+    table.add(finished.run, std::move(row));
+    ++done;
+    progress.finished(finished.run, line, going.size());
+  }
+}
+
+}  // namespace
+
+// The command line is not used: the table is plain CSV, with no place for provenance.
+void study(const Options& options, const std::string& /*command_line*/) {
+  const study::Study definition = scenario::load_study(options.scenario);
+  const scenario::Scenario base = scenario::load(definition.scene);
+  if (base.model != scenario::Model::swe) {
+    throw scenario::ScenarioError("/scene", "a scene with \"model\": \"ns\"",
+                                  "a shallow-water scene (the study measures shallow-water runs)",
+                                  "study");
+  }
+  const std::vector<PlannedRun> runs = plan_runs(definition, base);
+  const int cores = usable_cores();
+  const int jobs = std::clamp(options.jobs > 0 ? options.jobs : definition.jobs.value_or(cores), 1,
+                              static_cast<int>(runs.size()));
+  const int threads = options.threads > 0 ? options.threads : std::max(1, cores / jobs);
+  const std::filesystem::path output =
+      options.output ? std::filesystem::absolute(*options.output).lexically_normal()
+                     : definition.output;
+
+  spdlog::info("study '{}': {} runs of scene '{}', {} at once, {} each, end time {} s",
+               options.scenario.string(), runs.size(), base.name, jobs, threads_text(threads),
+               base.end_time_s);
+  StudyTable table(output, runs);
+  std::vector<double> costs;
+  for (const auto& run : runs) costs.push_back(run.expected_cost);
+  SweepProgress progress(costs, options.verbosity != Verbosity::quiet);
+  const auto start = Clock::now();
+  run_all(runs, definition, jobs, threads, table, progress);
+  progress.finish();
+  table.finish();
+  log_summary(table, runs, seconds_since(start), jobs, threads);
+}
+
+}  // namespace swemps::cli

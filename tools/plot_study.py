@@ -1,0 +1,178 @@
+#!/usr/bin/python3
+"""Plot a `swe-mps study` table: accuracy against cost, and accuracy against spacing.
+
+Reads the CSV table a study writes and draws one PNG with two panels:
+
+- left: the error (fan L1 / h0 by default) against wall time, log-log. Each combination of
+  the knobs other than spacing (splitting, gradient, and cfl and alpha_e when they were
+  swept) has its own colour and marker, with a line joining its spacings. The Pareto front
+  (runs no other run beats on both wall time and error) is a dashed step line with its runs
+  circled.
+- right: the same error against particle spacing, log-log, with the observed order of
+  convergence, log(e1/e2) / log(s1/s2), written beside each segment between neighbouring
+  spacings.
+
+Runs that broke down or failed have no error; they are listed on standard output.
+
+    /usr/bin/python3 tools/plot_study.py cases/ritter-50m/ritter-50m-study.csv -o study.png
+    /usr/bin/python3 tools/plot_study.py TABLE.csv -o study.png --error upstream_fan_l1
+"""
+import argparse
+import csv
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+# The knobs that, with the spacing, define a run; a series is one setting of all but spacing.
+SERIES_KNOBS = ["splitting_threshold", "gradient", "cfl", "alpha_e"]
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "*"]
+
+
+def number(text):
+    """A table value as a float; "nan" and empty fields are NaN."""
+    try:
+        return float(text)
+    except ValueError:
+        return math.nan
+
+
+def read_table(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def swept_knobs(rows):
+    """The series knobs that take more than one value in the table: only they go in labels."""
+    return [k for k in SERIES_KNOBS if len({r[k] for r in rows}) > 1]
+
+
+def series_key(row):
+    return tuple(row[k] for k in SERIES_KNOBS)
+
+
+def series_label(row, knobs):
+    parts = []
+    for k in knobs:
+        if k == "splitting_threshold":
+            threshold = number(row[k])
+            parts.append("no splitting" if math.isnan(threshold) else f"splitting {threshold:g}")
+        elif k == "gradient":
+            parts.append(row[k])
+        else:
+            parts.append(f"{k} {row[k]}")
+    return ", ".join(parts) or "runs"
+
+
+def pareto_front(points):
+    """(cost, error, ...) tuples no other point beats on both; cheapest first."""
+    front = []
+    for p in points:
+        beaten = any(q[0] <= p[0] and q[1] <= p[1] and (q[0] < p[0] or q[1] < p[1])
+                     for q in points)
+        if not beaten:
+            front.append(p)
+    return sorted(front)
+
+
+def observed_orders(spacings, errors):
+    """The order between neighbouring spacings, log(e1/e2) / log(s1/s2)."""
+    return [math.log(errors[k] / errors[k + 1]) / math.log(spacings[k] / spacings[k + 1])
+            for k in range(len(spacings) - 1)]
+
+
+def split_series(rows, error):
+    """{series key: (label, [(spacing, wall_s, error)] sorted by spacing)} over finished runs."""
+    knobs = swept_knobs(rows)
+    series = {}
+    for r in rows:
+        if r["status"] != "ok" or not number(r[error]) > 0.0:
+            continue
+        key = series_key(r)
+        label = series_label(r, knobs)
+        series.setdefault(key, (label, []))[1].append(
+            (number(r["spacing_m"]), number(r["wall_s"]), number(r[error])))
+    for _, points in series.values():
+        points.sort(reverse=True)  # coarse to fine
+    return series
+
+
+def plot_cost(ax, series, error_name):
+    everything = []
+    for k, (label, points) in enumerate(series.values()):
+        marker = MARKERS[k % len(MARKERS)]
+        ax.plot([p[1] for p in points], [p[2] for p in points], marker=marker, label=label,
+                color=f"C{k}")
+        for s, t, e in points:
+            ax.annotate(f"{s:g}", (t, e), textcoords="offset points", xytext=(4, 4), fontsize=7,
+                        color=f"C{k}")
+        everything += [(t, e) for _, t, e in points]
+    front = pareto_front(everything)
+    if front:
+        ax.step([p[0] for p in front], [p[1] for p in front], where="post", color="k",
+                linestyle="--", linewidth=1, label="Pareto front")
+        ax.plot([p[0] for p in front], [p[1] for p in front], "o", markersize=14,
+                markerfacecolor="none", markeredgecolor="k")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time per run (s)")
+    ax.set_ylabel(f"{error_name} / h0")
+    ax.set_title("accuracy against cost (labels: spacing, m)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+
+
+def plot_convergence(ax, series, error_name):
+    for k, (label, points) in enumerate(series.values()):
+        spacings = [p[0] for p in points]
+        errors = [p[2] for p in points]
+        ax.plot(spacings, errors, marker=MARKERS[k % len(MARKERS)], label=label, color=f"C{k}")
+        for j, order in enumerate(observed_orders(spacings, errors)):
+            s = math.sqrt(spacings[j] * spacings[j + 1])
+            e = math.sqrt(errors[j] * errors[j + 1])
+            ax.annotate(f"{order:.2f}", (s, e), textcoords="offset points", xytext=(0, 6),
+                        fontsize=7, color=f"C{k}", ha="center")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("particle spacing (m)")
+    ax.set_ylabel(f"{error_name} / h0")
+    ax.set_title("convergence (labels: observed order)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+
+
+def report(rows, series, error):
+    for r in rows:
+        if r["status"] != "ok":
+            print(f"run {r['run']} (spacing {r['spacing_m']}, splitting {r['splitting_threshold']}, "
+                  f"{r['gradient']}, cfl {r['cfl']}, alpha_e {r['alpha_e']}): {r['status']}: "
+                  f"{r['message']}")
+    for label, points in series.values():
+        orders = observed_orders([p[0] for p in points], [p[2] for p in points])
+        print(f"{label}: {error} " + ", ".join(f"{p[2]:.4g}" for p in points) +
+              "; observed orders " + ", ".join(f"{o:.2f}" for o in orders))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("table", help="the CSV table of swe-mps study")
+    parser.add_argument("-o", "--output", default="study.png", help="the PNG to write")
+    parser.add_argument("--error", default="fan_l1",
+                        help="the error column: fan_l1 (default), fan_l2, fan_linf, "
+                             "upstream_fan_l1")
+    args = parser.parse_args()
+    rows = read_table(args.table)
+    series = split_series(rows, args.error)
+    report(rows, series, args.error)
+    fig, (cost, convergence) = plt.subplots(1, 2, figsize=(13, 5.5))
+    plot_cost(cost, series, args.error)
+    plot_convergence(convergence, series, args.error)
+    fig.tight_layout()
+    fig.savefig(args.output, dpi=130)
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()
