@@ -454,18 +454,21 @@ std::string finished_line(std::size_t run, std::size_t total, const PlannedRun& 
 
 void log_summary(const StudyTable& table, const std::vector<PlannedRun>& runs, double wall_s,
                  int jobs, int threads) {
-  std::size_t ok = 0, broke_down = 0, failed = 0;
+  std::size_t ok = 0, broke_down = 0, timed_out = 0, failed = 0;
   std::vector<study::CostError> points;
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunRecord& r = table.row(i)->record;
     ok += r.status == "ok";
     broke_down += r.status == "breakdown";
-    failed += r.status != "ok" && r.status != "breakdown";  // "failed" or "timeout"
+    timed_out += r.status == "timeout";
+    failed += r.status == "failed";
     points.push_back(r.status == "ok" ? study::CostError{r.wall_s, r.fan_l1}
                                       : study::CostError{kNaN, kNaN});
   }
-  spdlog::info("study: {} runs ({} ok, {} broke down, {} failed) in {:.1f} s, {} at once, {} each",
-               runs.size(), ok, broke_down, failed, wall_s, jobs, threads_text(threads));
+  spdlog::info(
+      "study: {} runs ({} ok, {} broke down, {} stopped at the time limit, {} failed) in {:.1f} s, "
+      "{} at once, {} each",
+      runs.size(), ok, broke_down, timed_out, failed, wall_s, jobs, threads_text(threads));
   spdlog::info(
       "Pareto front, wall time against fan L1 (no other run is both faster and more "
       "accurate):");
@@ -473,9 +476,9 @@ void log_summary(const StudyTable& table, const std::vector<PlannedRun>& runs, d
     spdlog::info("  run {:>3}  {:9.3f} s  fan L1 {:.4g}  ({})", i + 1, points[i].cost,
                  points[i].error, study::describe(runs[i].knobs));
   }
-  if (broke_down + failed > 0) {
+  if (broke_down + timed_out + failed > 0) {
     spdlog::warn("{} of {} runs did not finish; the table's status and message columns say why",
-                 broke_down + failed, runs.size());
+                 broke_down + timed_out + failed, runs.size());
   }
   spdlog::info("wrote {}", table.path().string());
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "swemps/neighbors/parallel.hpp"
 #include "swemps/swe/operators.hpp"
 
 namespace swemps::splitting {
@@ -117,8 +118,14 @@ void ParticleSplitting::apply(swe::StepContext& context) {
   auto& p = context.particles;
   const std::size_t n = p.fluid_count();
   plans_.clear();
+  // Which particles have grown past the threshold, in parallel (few have); the plans are then
+  // made in index order, so the particles the cap refuses never depend on the threads.
+  oversized_.assign(n, 0);
+  parallel_for(n, [&](std::size_t i) {
+    oversized_[i] = p.area[i] > settings_.area_ratio_threshold * p.initial_area[i];
+  });
   for (std::size_t i = 0; i < n; ++i) {
-    if (!(p.area[i] > settings_.area_ratio_threshold * p.initial_area[i])) continue;
+    if (!oversized_[i]) continue;
     if (settings_.max_particles != 0 && n + plans_.size() >= settings_.max_particles) {
       ++refused_at_cap_;
       continue;

@@ -81,13 +81,17 @@ double influence_radius(const SweParticles& p, double alpha_e, double max_area_r
   // eq 7 gives an isolated particle exactly A = 1 / w(0); a relative margin absorbs the
   // rounding of V / (V w(0)).
   const double isolated_from = isolated_area * (1.0 - 1e-9);
-  double largest_connected = 0.0;
-  double largest_any = 0.0;
-  for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-    const double bounded = std::min(p.area[i], max_area_ratio * p.initial_area[i]);
-    largest_any = std::max(largest_any, bounded);
-    if (p.area[i] < isolated_from) largest_connected = std::max(largest_connected, bounded);
-  }
+  // Maxima per chunk in parallel; a maximum does not depend on the order it is taken in.
+  std::array<double, reduction_chunks> connected{}, any{};
+  parallel_chunks(p.fluid_count(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double bounded = std::min(p.area[i], max_area_ratio * p.initial_area[i]);
+      any[chunk] = std::max(any[chunk], bounded);
+      if (p.area[i] < isolated_from) connected[chunk] = std::max(connected[chunk], bounded);
+    }
+  });
+  const double largest_connected = *std::max_element(connected.begin(), connected.end());
+  const double largest_any = *std::max_element(any.begin(), any.end());
   return alpha_e * std::sqrt(largest_connected > 0.0 ? largest_connected : largest_any);
 }
 
@@ -202,23 +206,24 @@ void depth_gradient(GradientVariant variant, SweParticles& p, const neighbors::N
 }
 
 TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, double cfl) {
-  // The step of every particle in parallel (two square roots and a division each), then one
-  // serial scan for the smallest, which keeps the limiting particle the same for any number
-  // of threads.
-  std::vector<double> step(p.fluid_count());
-  parallel_for(p.fluid_count(), [&](std::size_t i) {
-    const double speed = std::sqrt(gravity_m_s2 * p.depth[i]) + distance(p.u[i], p.v[i]);
-    step[i] = cfl * std::sqrt(p.area[i]) / speed;
+  // The first particle with the smallest step, or the first whose step is NaN (it must surface
+  // as the limiting particle, not be skipped by '<'). Found per chunk in parallel, then the
+  // chunks' answers are taken in order by the same rule, which gives the serial scan's
+  // answer for any number of threads.
+  const auto take = [](TimeStepLimit& limit, double dt, std::size_t i) {
+    if (std::isnan(limit.dt_s)) return;
+    if (!(dt >= limit.dt_s) || std::isnan(dt)) limit = {dt, i};
+  };
+  std::array<TimeStepLimit, reduction_chunks> chunk_limit;
+  chunk_limit.fill({std::numeric_limits<double>::infinity(), 0});
+  parallel_chunks(p.fluid_count(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double speed = std::sqrt(gravity_m_s2 * p.depth[i]) + distance(p.u[i], p.v[i]);
+      take(chunk_limit[chunk], cfl * std::sqrt(p.area[i]) / speed, i);
+    }
   });
   TimeStepLimit limit{std::numeric_limits<double>::infinity(), 0};
-  for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-    const double dt = step[i];
-    // A NaN anywhere must surface as the limiting particle, not be skipped by '<'.
-    if (!(dt >= limit.dt_s) || std::isnan(dt)) {
-      limit = {dt, i};
-      if (std::isnan(dt)) break;
-    }
-  }
+  for (const TimeStepLimit& c : chunk_limit) take(limit, c.dt_s, c.particle);
   return limit;
 }
 

@@ -70,6 +70,7 @@ std::string dam_break_scene(std::size_t particles) {
 
 struct Measurement {
   std::size_t particles_start = 0, particles_end = 0, steps = 0, particle_steps = 0;
+  double neighbours_per_particle = 0.0;  // at the end
   double wall_s = 0.0, bytes_per_particle = 0.0, grid_s = 0.0, write_s = 0.0;
   swemps::swe::PhaseTimes phases;
   double effects_s = 0.0, splitting_s = 0.0;
@@ -100,6 +101,8 @@ Measurement measure(std::size_t particles, int threads, double particle_steps_wa
   m.steps = steps;
   m.particle_steps = sim.particle_steps();
   m.particles_end = sim.particles().fluid_count();
+  m.neighbours_per_particle =
+      static_cast<double>(sim.neighbor_list().index.size()) / static_cast<double>(m.particles_end);
   const auto& p = sim.phase_times();
   m.phases = {p.sort - phases_before.sort,           p.neighbors - phases_before.neighbors,
               p.depth - phases_before.depth,         p.gradient - phases_before.gradient,
@@ -117,8 +120,8 @@ Measurement measure(std::size_t particles, int threads, double particle_steps_wa
   const auto write_start = Clock::now();
   {
     scene.output.path = folder / "speed.nc";
-    cli::MapOutput file(scene, built.terrain, grid, {"speed.json", "swemps-swe-speed", false},
-                        true, "", "");
+    cli::MapOutput file(scene, built.terrain, grid, {"speed.json", "swemps-swe-speed", false}, true,
+                        "", "");
     file.write_maps(sim.time(), {fields.depth, fields.u, fields.v}, &sim.particles());
     file.finish();
   }
@@ -147,21 +150,24 @@ int main(int argc, char** argv) {
   const double wanted = wanted_env ? std::atof(wanted_env) : 2e7;
 
   std::printf(
-      "| particles | threads | steps | particles at end | wall (s) | particle-steps/s | per "
+      "| particles | threads | steps | particles at end | neighbours per particle | wall (s) | "
+      "particle-steps/s | per "
       "core | neighbours (s) | sums (s) | gradient (s) | sort (s) | walls (s) | integrate (s) "
       "| effects (s) | of which splitting (s) | bytes/particle | map gridding (s) | map "
-      "write (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "write (s) "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::size_t n : sizes) {
     for (const int threads : thread_counts()) {
       const auto m = measure(n, threads, wanted);
       const double rate = static_cast<double>(m.particle_steps) / m.wall_s;
       std::printf(
-          "| %zu | %d | %zu | %zu | %.2f | %.3g | %.3g | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | "
+          "| %zu | %d | %zu | %zu | %.1f | %.2f | %.3g | %.3g | %.2f | %.2f | %.2f | %.2f | %.2f | "
+          "%.2f | "
           "%.2f | %.2f | %.0f | %.2f | %.2f |\n",
-          m.particles_start, threads, m.steps, m.particles_end, m.wall_s, rate, rate / threads,
-          m.phases.neighbors, m.phases.depth, m.phases.gradient, m.phases.sort, m.phases.walls,
-          m.phases.integrate, m.effects_s, m.splitting_s, m.bytes_per_particle, m.grid_s,
-          m.write_s);
+          m.particles_start, threads, m.steps, m.particles_end, m.neighbours_per_particle, m.wall_s,
+          rate, rate / threads, m.phases.neighbors, m.phases.depth, m.phases.gradient,
+          m.phases.sort, m.phases.walls, m.phases.integrate, m.effects_s, m.splitting_s,
+          m.bytes_per_particle, m.grid_s, m.write_s);
       std::fflush(stdout);
     }
   }

@@ -22,6 +22,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "swemps/boundaries/ghost_walls.hpp"
@@ -83,6 +84,7 @@ class ParticleSplitting final : public swe::Effect {
   SplittingSettings settings_;
   std::vector<boundaries::WallSegment> walls_;
   std::vector<Plan> plans_;
+  std::vector<std::uint8_t> oversized_;  // per particle: area past the threshold (apply)
   std::size_t splits_ = 0, refused_at_walls_ = 0, refused_at_cap_ = 0;
 };
 

@@ -101,6 +101,8 @@ class Simulation {
   std::size_t particle_steps() const { return particle_steps_; }
   const particles::SweParticles& particles() const { return particles_; }
   const Kernel& kernel() const { return kernel_; }
+  // The neighbour rows of the last refresh (fluid particles only; ghosts have no row).
+  const neighbors::NeighborList& neighbor_list() const { return neighbor_list_; }
   const Settings& settings() const { return settings_; }
   const VolumeLedger& ledger() const { return ledger_; }
   double fluid_volume() const { return particles_.total_fluid_volume(); }
