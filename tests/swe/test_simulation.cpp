@@ -92,11 +92,18 @@ TEST_CASE("the summation gradient conserves momentum exactly", "[swe]") {
 
 TEST_CASE("results do not depend on the number of threads", "[swe]") {
   auto scene = scenario::load(std::string(SWEMPS_SOURCE_DIR) + "/cases/ritter/scenario.json");
+  // 7,440 particles: every particle loop and reduction runs in parallel (above
+  // parallel_threshold), and splitting adds particles (with the summation gradient: under
+  // eq 6 the tip never grows past the threshold), so sorting and the split scan are in.
+  for (auto& body : scene.water) body.spacing_m = 0.025;
+  scene.numerics.gradient = swe::GradientVariant::summation;
+  scene.splitting = splitting::SplittingSettings{};
   const int before = omp_get_max_threads();
   auto run = [&](int threads) {
     omp_set_num_threads(threads);
     auto sim = scenario::make_simulation(scene);
-    sim.advance_to(0.3);
+    sim.advance_to(0.2);
+    REQUIRE(sim.particles().fluid_count() > 7440);  // some particles split
     return sim.particles();
   };
   const auto one = run(1);
@@ -124,6 +131,27 @@ TEST_CASE("the time step follows eq 13", "[swe]") {
                                       (std::sqrt(9.81 * q.depth[i]) + std::hypot(q.u[i], q.v[i])));
   }
   CHECK(dt == Approx(expected).epsilon(1e-14));
+}
+
+TEST_CASE("the limiting particle is the first of equal ones on any number of threads", "[swe]") {
+  // 5,000 particles: the limit is found chunk by chunk in parallel (parallel_chunks).
+  particles::SweParticles p;
+  for (int i = 0; i < 5000; ++i) p.add_fluid(0.01 * i, 0.0, 0.0, 0.0, 0.01, 1.0, 0.01, 0.0);
+  p.depth[4321] = p.depth[1234] = 4.0;  // the two fastest waves, equal
+  const int before = omp_get_max_threads();
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    const auto limit = swe::stable_time_step(p, 9.81, 0.5);
+    CHECK(limit.particle == 1234);
+    CHECK(limit.dt_s == 0.5 * std::sqrt(p.area[1234]) / std::sqrt(9.81 * 4.0));
+    auto broken = p;
+    broken.u[4000] = std::nan("");
+    broken.u[4500] = std::nan("");
+    const auto nan_limit = swe::stable_time_step(broken, 9.81, 0.5);
+    CHECK(nan_limit.particle == 4000);  // the first NaN, not the smallest step
+    CHECK(std::isnan(nan_limit.dt_s));
+  }
+  omp_set_num_threads(before);
 }
 
 TEST_CASE("a non-finite state stops the run with a message naming the particle", "[swe]") {
@@ -191,8 +219,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
   REQUIRE(pool_radius < 1.1 * swe::Settings{}.alpha_e * spacing);  // about the lattice radius
   SECTION("one droplet does not set the radius") {
     water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
-    swe::Simulation sim(water, {}, two_boxes(),
-                        {});
+    swe::Simulation sim(water, {}, two_boxes(), {});
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);
     CHECK(sim.kernel().influence_radius() == Approx(pool_radius).epsilon(1e-12));
@@ -203,8 +230,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
     water.add_fluid(8.0, 0.6, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
     swe::Settings settings;
-    swe::Simulation sim(water, settings,
-                        two_boxes(), {});
+    swe::Simulation sim(water, settings, two_boxes(), {});
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);
     const double bound = settings.alpha_e * std::sqrt(settings.max_area_ratio * a0);
