@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/run_command.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 
@@ -24,21 +25,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status;
-  std::string output;  // stdout and stderr together
-};
+using Result = swemps::testing::CommandResult;
 
-Result run(const std::string& command) {
-  Result r{-1, {}};
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+Result run(const std::string& command) { return swemps::testing::run_command(command); }
 
 bool have(const std::string& tool) {
   return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/run_command.hpp"
 #include "../support/temp_dir.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/scenario/study_file.hpp"
@@ -61,21 +62,9 @@ void check_refused(const std::vector<Refusal>& cases) {
   }
 }
 
-struct Result {
-  int status;
-  std::string output;  // stdout and stderr together
-};
+using Result = swemps::testing::CommandResult;
 
-Result run(const std::string& command) {
-  Result r{-1, {}};
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+Result run(const std::string& command) { return swemps::testing::run_command(command); }
 
 // One CSV line split into fields; quoted fields may hold commas and doubled quotes.
 std::vector<std::string> csv_fields(const std::string& line) {
