@@ -87,9 +87,9 @@ Points<Dim> lattice(int per_side, double spacing, double origin) {
 
 template <int Dim>
 nb::NeighborList cell_list_neighbors(const Points<Dim>& pts, std::size_t targets, double radius,
-                                     double min_cell_width) {
+                                     double min_cell_width, int subdivisions = 1) {
   nb::CellList<Dim> cells;
-  cells.build(pts.coords(), min_cell_width);
+  cells.build(pts.coords(), min_cell_width, subdivisions);
   nb::NeighborList out;
   nb::build_neighbor_list<Dim>(cells, pts.coords(), targets, radius, out);
   return out;
@@ -132,8 +132,8 @@ std::string first_difference(const nb::NeighborList& fast, const nb::NeighborLis
 // can make sure a case is not vacuous (two empty lists always agree).
 template <int Dim>
 std::size_t check_against_brute_force(const Points<Dim>& pts, std::size_t targets, double radius,
-                                      double min_cell_width) {
-  const auto fast = cell_list_neighbors<Dim>(pts, targets, radius, min_cell_width);
+                                      double min_cell_width, int subdivisions = 1) {
+  const auto fast = cell_list_neighbors<Dim>(pts, targets, radius, min_cell_width, subdivisions);
   const auto reference = nb::brute_force_neighbors<Dim>(pts.coords(), targets, radius);
   CHECK(fast.row_count() == targets);
   CHECK(reference.row_count() == targets);
@@ -199,10 +199,12 @@ TEMPLATE_TEST_CASE_SIG("cell-list neighbours equal brute force on random points"
   // neighbours, like ghost particles).
   const bool all_targets = GENERATE(true, false);
   const std::size_t targets = all_targets ? n : n / 2;
-  CAPTURE(Dim, n, radius, width_factor, targets);
+  // Cells of the search radius, or a half or a third of it searched (2 s + 1)^Dim deep.
+  const int subdivisions = GENERATE(1, 2, 3);
+  CAPTURE(Dim, n, radius, width_factor, targets, subdivisions);
   const auto pts = random_points<Dim>(n, static_cast<std::uint32_t>(1000 * Dim + n));
   const std::size_t entries =
-      check_against_brute_force<Dim>(pts, targets, radius, width_factor * radius);
+      check_against_brute_force<Dim>(pts, targets, radius, width_factor * radius, subdivisions);
   if (n >= 2000 && radius == 0.12 && targets == n) CHECK(entries > 0);
 }
 
@@ -216,9 +218,12 @@ TEMPLATE_TEST_CASE_SIG("cell-list neighbours equal brute force on a lattice of t
   const double spacing = radius / GENERATE(1.0, 2.0);
   const double origin = GENERATE(0.0, -0.23, 1.234);
   const int per_side = Dim == 1 ? 2000 : (Dim == 2 ? 45 : 13);
-  CAPTURE(Dim, radius, spacing, origin);
+  // Half-width cells put lattice points on cell edges at every half spacing too.
+  const int subdivisions = GENERATE(1, 2);
+  CAPTURE(Dim, radius, spacing, origin, subdivisions);
   const auto pts = lattice<Dim>(per_side, spacing, origin);
-  const std::size_t entries = check_against_brute_force<Dim>(pts, pts.size(), radius, radius);
+  const std::size_t entries =
+      check_against_brute_force<Dim>(pts, pts.size(), radius, radius, subdivisions);
   if (spacing < radius) CHECK(entries > 0);
 }
 
@@ -440,11 +445,16 @@ TEMPLATE_TEST_CASE_SIG("for_each_candidate outside the bounding box", "[neighbor
     p[d] = top;
     pts.add(p);
   }
+  // With subdivisions the cells are narrower and the stencil deeper: it must reach as far.
+  // Not in 3D: 300 points in (0.99 / 0.05)^3 cells would make the cells widen for size.
+  const int subdivisions = GENERATE(1, 2, 3);
+  if (Dim == 3 && subdivisions > 1) return;
+  CAPTURE(subdivisions);
   nb::CellList<Dim> cells;
-  cells.build(pts.coords(), width);
-  // Small set: the cells were not widened for size, so "one cell" is about `width`.
-  REQUIRE(cells.cell_width() >= width);
-  REQUIRE(cells.cell_width() < 1.01 * width);
+  cells.build(pts.coords(), width, subdivisions);
+  // Small set: the cells were not widened for size, so the reach is about `width`.
+  REQUIRE(cells.search_radius() >= width);
+  REQUIRE(cells.search_radius() < 1.01 * width);
 
   SECTION("far away: no candidates") {
     // 1e300 also checks that the cell coordinate is clamped before it becomes an integer.
