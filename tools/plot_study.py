@@ -99,6 +99,17 @@ def split_series(rows, error):
     return series
 
 
+def finish_axes(ax, xlabel, error_name, title):
+    """Log-log axes with labels, grid and legend, as both panels have them."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(f"{error_name} / h0")
+    ax.set_title(title)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+
+
 def plot_cost(ax, series, error_name):
     everything = []
     for k, (label, points) in enumerate(series.values()):
@@ -115,13 +126,8 @@ def plot_cost(ax, series, error_name):
                 linestyle="--", linewidth=1, label="Pareto front")
         ax.plot([p[0] for p in front], [p[1] for p in front], "o", markersize=14,
                 markerfacecolor="none", markeredgecolor="k")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("wall time per run (s)")
-    ax.set_ylabel(f"{error_name} / h0")
-    ax.set_title("accuracy against cost (labels: spacing, m)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    finish_axes(ax, "wall time per run (s)", error_name,
+                "accuracy against cost (labels: spacing, m)")
 
 
 def plot_convergence(ax, series, error_name):
@@ -134,13 +140,7 @@ def plot_convergence(ax, series, error_name):
             e = math.sqrt(errors[j] * errors[j + 1])
             ax.annotate(f"{order:.2f}", (s, e), textcoords="offset points", xytext=(0, 6),
                         fontsize=7, color=f"C{k}", ha="center")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("particle spacing (m)")
-    ax.set_ylabel(f"{error_name} / h0")
-    ax.set_title("convergence (labels: observed order)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    finish_axes(ax, "particle spacing (m)", error_name, "convergence (labels: observed order)")
 
 
 def report(rows, series, error):

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "swemps/boundaries/particle_removal.hpp"
 #include "swemps/neighbors/parallel.hpp"
 
 namespace swemps::boundaries {
@@ -84,19 +85,9 @@ void OutflowLines::apply(swe::StepContext& context) {
     if (!finite(now) || !finite(before)) return;
     leaving_[i] = path_touches_any(before, now) ? 1 : 0;
   });
-  // Summed in index order, so the booked volume does not depend on the number of threads.
-  std::size_t count = 0;
-  double volume = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!leaving_[i]) continue;
-    volume += p.volume[i];
-    ++count;
-  }
-  if (count == 0) return;
-  p.remove(leaving_);
-  context.ledger.removed_m3 += volume;
-  removed_ += count;
-  removed_m3_ += volume;
+  const Removal removal = remove_flagged(p, leaving_, context.ledger);
+  removed_ += removal.particles;
+  removed_m3_ += removal.volume_m3;
 }
 
 std::string OutflowLines::report() const {
