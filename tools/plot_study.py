@@ -146,8 +146,8 @@ def plot_convergence(ax, series, error_name):
 def report(rows, series, error):
     for r in rows:
         if r["status"] != "ok":
-            print(f"run {r['run']} (spacing {r['spacing_m']}, splitting {r['splitting_threshold']}, "
-                  f"{r['gradient']}, cfl {r['cfl']}, alpha_e {r['alpha_e']}): {r['status']}: "
+            print(f"run {r['run']} (spacing {r['spacing_m']}, "
+                  f"splitting {r['splitting_threshold']}, {r['gradient']}, cfl {r['cfl']}, alpha_e {r['alpha_e']}): {r['status']}: "
                   f"{r['message']}")
     for label, points in series.values():
         orders = observed_orders([p[0] for p in points], [p[2] for p in points])
