@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev              # scenario files
   libspdlog-dev                   # logging
   catch2                          # unit tests (v2)
+  clang libclang-rt-dev           # the scenario-parser fuzzer (libFuzzer); see tests/fuzz/
   python3-matplotlib python3-netcdf4 python3-numpy   # plots in docs/
   python3-xarray python3-gdal      # tests open the flood maps with xarray; DEM conversion tool
 )

@@ -27,4 +27,14 @@ std::string DomainOutflow::report() const {
          " m3";
 }
 
+void DomainOutflow::save_state(swe::StateWriter& out) const {
+  out.count(removed_);
+  out.number(removed_m3_);
+}
+
+void DomainOutflow::restore_state(swe::StateReader& in) {
+  removed_ = in.count();
+  removed_m3_ = in.number();
+}
+
 }  // namespace swemps::boundaries

@@ -106,43 +106,95 @@ void GhostWalls::copy_fields_to_ghosts(particles::SweParticles& p) {
   }
 }
 
-bool GhostWalls::crosses(const WallSegment& wall, Vec p0, Vec p1) {
-  // Proper or touching intersection of segment p0-p1 with the wall; ending exactly on the
-  // wall counts as crossing, so no particle is ever left on a wall line.
+namespace {
+
+// Where along the path p0 -> p1 it meets the wall, as a fraction of the path in (0, 1], or a
+// negative number when it does not. The wall counts `slack` (a fraction of its length) past
+// each end: a path through the very point where two walls meet must hit one of them, which
+// exact arithmetic does not promise.
+double crossing_fraction(const WallSegment& wall, Vec p0, Vec p1, double slack) {
   const Vec d = sub(p1, p0);
   const Vec e = sub(wall.to, wall.from);
   const double denom = cross(d, e);
-  if (denom == 0.0) return false;  // parallel: cannot pass through
+  if (denom == 0.0) return -1.0;  // parallel: cannot pass through
   const Vec w = sub(wall.from, p0);
   const double t = cross(w, e) / denom;  // along the path
   const double s = cross(w, d) / denom;  // along the wall
-  return t > 0.0 && t <= 1.0 && s >= 0.0 && s <= 1.0;
+  return t > 0.0 && t <= 1.0 && s >= -slack && s <= 1.0 + slack ? t : -1.0;
+}
+
+// Fraction of a wall's length that counts past each end (crossing_fraction).
+constexpr double kEndSlack = 1e-9;
+// Reflections followed per particle and step: a path into a corner bounces off both walls; more
+// than this only in a corner sharper than any a scene should have, and then the particle goes
+// back to where the step started, which was inside.
+constexpr int kMaxReflections = 4;
+
+}  // namespace
+
+bool GhostWalls::crosses(const WallSegment& wall, Vec p0, Vec p1) {
+  // Proper or touching intersection of segment p0-p1 with the wall; ending exactly on the
+  // wall counts as crossing, so no particle is ever left on a wall line.
+  return crossing_fraction(wall, p0, p1, 0.0) >= 0.0;
 }
 
 std::size_t GhostWalls::keep_inside(particles::SweParticles& p, std::span<const double> old_x,
                                     std::span<const double> old_y) const {
   std::size_t reflected = 0;
-  for (const auto& [i, s] : near_wall_) {
-    const Vec start{old_x[i], old_y[i]};
-    const Vec end{p.x[i], p.y[i]};
-    if (!crosses(segments_[s], start, end)) continue;
-    const Line& line = lines_[s];
-    const double side = dot(sub(start, line.origin), line.normal);
-    const double d = dot(sub(end, line.origin), line.normal);
-    // Mirror the overshoot back to the starting side; a particle ending on the line is
-    // pushed off it by a hair so that it cannot sit on the wall.
-    const double sign = side >= 0.0 ? 1.0 : -1.0;
-    double back = -d * sign;  // distance behind the wall, >= 0
-    back = std::max(back, 1e-9 * line.length);
-    const double target = sign * back;
-    p.x[i] = end[0] + (target - d) * line.normal[0];
-    p.y[i] = end[1] + (target - d) * line.normal[1];
-    const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
-    if (un * sign < 0.0) {  // moving into the wall: bounce
-      p.u[i] -= 2.0 * un * line.normal[0];
-      p.v[i] -= 2.0 * un * line.normal[1];
+  // near_wall_ holds each particle's segments together (add_ghosts adds them particle by
+  // particle). The path is followed like a billiard ball: reflect off the first wall it meets,
+  // then follow the reflected rest of the path, which may meet another wall. Reflecting off
+  // each crossed wall in turn, in the order of the list, is not enough: a path past a corner
+  // that first crosses the second wall's line, once reflected, can end behind the first.
+  for (std::size_t k = 0; k < near_wall_.size();) {
+    const std::uint32_t i = near_wall_[k].first;
+    std::size_t group_end = k;
+    while (group_end < near_wall_.size() && near_wall_[group_end].first == i) ++group_end;
+    Vec start{old_x[i], old_y[i]};
+    Vec end{p.x[i], p.y[i]};
+    std::size_t last_wall = near_wall_.size();  // the wall the path now starts on, if any
+    bool inside = false;
+    for (int bounce = 0; bounce < kMaxReflections && !inside; ++bounce) {
+      double first = 2.0;
+      std::size_t hit = near_wall_.size();
+      for (std::size_t g = k; g < group_end; ++g) {
+        if (g == last_wall) continue;
+        const double t = crossing_fraction(segments_[near_wall_[g].second], start, end, kEndSlack);
+        if (t >= 0.0 && t < first) {
+          first = t;
+          hit = g;
+        }
+      }
+      if (hit == near_wall_.size()) {
+        inside = true;
+        break;
+      }
+      const Line& line = lines_[near_wall_[hit].second];
+      const double side = dot(sub(start, line.origin), line.normal);
+      const double d = dot(sub(end, line.origin), line.normal);
+      // Mirror the overshoot back to the starting side; a particle ending on the line is
+      // pushed off it by a hair so that it cannot sit on the wall.
+      const double sign = side >= 0.0 ? 1.0 : -1.0;
+      const double back = std::max(-d * sign, 1e-9 * line.length);  // behind the wall, >= 0
+      const Vec on_wall{start[0] + first * (end[0] - start[0]),
+                        start[1] + first * (end[1] - start[1])};
+      end = {end[0] + (sign * back - d) * line.normal[0],
+             end[1] + (sign * back - d) * line.normal[1]};
+      start = on_wall;
+      last_wall = hit;
+      const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
+      if (un * sign < 0.0) {  // moving into the wall: bounce
+        p.u[i] -= 2.0 * un * line.normal[0];
+        p.v[i] -= 2.0 * un * line.normal[1];
+      }
     }
-    ++reflected;
+    if (!inside) end = {old_x[i], old_y[i]};  // see kMaxReflections
+    if (end[0] != p.x[i] || end[1] != p.y[i]) {
+      p.x[i] = end[0];
+      p.y[i] = end[1];
+      ++reflected;
+    }
+    k = group_end;
   }
   return reflected;
 }

@@ -122,4 +122,19 @@ std::string InflowLine::report() const {
   return out.str();
 }
 
+void InflowLine::save_state(swe::StateWriter& out) const {
+  // The strip's water and advance decide when the next row appears and how much it holds.
+  for (const double value : {pending_m3_, advance_m_, added_m3_}) out.number(value);
+  out.count(rows_);
+  out.count(particles_);
+}
+
+void InflowLine::restore_state(swe::StateReader& in) {
+  pending_m3_ = in.number();
+  advance_m_ = in.number();
+  added_m3_ = in.number();
+  rows_ = in.count();
+  particles_ = in.count();
+}
+
 }  // namespace swemps::boundaries

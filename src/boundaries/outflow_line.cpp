@@ -96,4 +96,14 @@ std::string OutflowLines::report() const {
   return out.str();
 }
 
+void OutflowLines::save_state(swe::StateWriter& out) const {
+  out.count(removed_);
+  out.number(removed_m3_);
+}
+
+void OutflowLines::restore_state(swe::StateReader& in) {
+  removed_ = in.count();
+  removed_m3_ = in.number();
+}
+
 }  // namespace swemps::boundaries

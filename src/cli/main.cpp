@@ -10,6 +10,7 @@
 
 #include "swemps/cli/options.hpp"
 #include "swemps/cli/run_command.hpp"
+#include "swemps/io/checkpoint.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/swe/simulation.hpp"
@@ -61,6 +62,12 @@ int main(int argc, char** argv) {
     return exit_ok;
   } catch (const swemps::scenario::ScenarioError& e) {
     return fail(exit_input, e.what());
+  } catch (const UsageError& e) {
+    return fail(exit_input, e.what());
+  } catch (const swemps::io::CheckpointError& e) {
+    return fail(exit_input, std::string("cannot restart: ") + e.what());
+  } catch (const RunStopped& e) {
+    return fail(exit_signal + e.signal_number(), e.what());
   } catch (const swemps::swe::SimulationError& e) {
     return fail(exit_breakdown, std::string("the simulation broke down: ") + e.what());
   } catch (const swemps::ns::SimulationError& e) {

@@ -30,25 +30,36 @@ Options:
   -t, --threads N     OpenMP threads (default: all cores; results do not depend on N);
                       study: threads per run (default: cores / jobs)
   -j, --jobs N        study: runs at once (default: the study file's jobs, or one per core)
+      --checkpoint-every N
+                      run (shallow water): also write a checkpoint every N output times
+                      (one is always written when the run stops early); the checkpoint is
+                      the output path with the extension .checkpoint
+      --restart FILE  run (shallow water): go on from checkpoint FILE, written by a run of
+                      the same scenario file, writing on into the output that run left
+                      (OUTPUT.partial); the result is the same as one run straight through
   -q, --quiet         warnings and errors only, no progress
   -v, --verbose       debug messages
   -h, --help          this text
       --version       print the version
 
-Exit status: 0 done; 2 bad command line or scenario; 3 the simulation broke down
-(non-finite values or a collapsing time step); 4 the output could not be written;
-1 any other error.
+Exit status: 0 done; 2 bad command line, scenario or checkpoint; 3 the simulation broke
+down (non-finite values or a collapsing time step: the last good state is written to
+OUTPUT.partial, with a checkpoint); 4 the output could not be written; 130 or 143
+stopped by SIGINT or SIGTERM (128 + the signal: the state after the current step is
+written to OUTPUT.partial, with a checkpoint; a second signal stops at once); 1 any
+other error.
 )";
 }
 
 namespace {
 
-// A whole number from 1 to 1024, the value of option `name`.
-int parse_count(const std::string& name, const std::string& text) {
+// A whole number from 1 to `largest`, the value of option `name`.
+int parse_count(const std::string& name, const std::string& text, int largest = 1024) {
   int value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (ec != std::errc() || end != text.data() + text.size() || value < 1 || value > 1024) {
-    throw UsageError(name + " expects a whole number from 1 to 1024, found '" + text + "'");
+  if (ec != std::errc() || end != text.data() + text.size() || value < 1 || value > largest) {
+    throw UsageError(name + " expects a whole number from 1 to " + std::to_string(largest) +
+                     ", found '" + text + "'");
   }
   return value;
 }
@@ -75,6 +86,10 @@ Options parse_options(const std::vector<std::string>& args) {
       options.threads = parse_count("--threads", value(arg));
     } else if (arg == "-j" || arg == "--jobs") {
       options.jobs = parse_count("--jobs", value(arg));
+    } else if (arg == "--checkpoint-every") {
+      options.checkpoint_every = parse_count(arg, value(arg), 1'000'000);
+    } else if (arg == "--restart") {
+      options.restart = value(arg);
     } else if (arg == "-q" || arg == "--quiet") {
       options.verbosity = Verbosity::quiet;
     } else if (arg == "-v" || arg == "--verbose") {
@@ -93,6 +108,9 @@ Options parse_options(const std::vector<std::string>& args) {
     }
   }
   if (options.command.empty()) throw UsageError("no command given (see swe-mps --help)");
+  if (options.command != "run" && (options.restart || options.checkpoint_every > 0)) {
+    throw UsageError("--restart and --checkpoint-every apply to 'run' only");
+  }
   if (options.scenario.empty()) {
     throw UsageError("'" + options.command + "' expects a " +
                      (options.command == "study" ? "study" : "scenario") + " file");

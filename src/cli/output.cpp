@@ -9,17 +9,40 @@
 #include <limits>
 #include <system_error>
 
+#include "swemps/io/checkpoint.hpp"
+
 namespace swemps::cli {
 
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+constexpr const char* kOutputStateLabel = "swe-mps map output";
+
 }  // namespace
+
+RunContext run_context(const Options& options, const std::string& command_line,
+                       const scenario::Scenario& scene) {
+  if (scene.model == scenario::Model::ns && (options.restart || options.checkpoint_every > 0)) {
+    throw UsageError("--restart and --checkpoint-every apply to shallow-water scenes only");
+  }
+  RunContext context{options.scenario, command_line, options.verbosity != Verbosity::quiet};
+  context.checkpoints = scene.model == scenario::Model::swe;
+  context.checkpoint_every = options.checkpoint_every;
+  context.restart = options.restart;
+  return context;
+}
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& output) {
+  std::filesystem::path path = output;
+  path.replace_extension(".checkpoint");
+  return path;
+}
 
 MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& terrain,
                      const swe::RegularGrid& grid, const RunContext& context, bool particles,
-                     const std::string& depth_long_name, const std::string& title_note)
+                     const std::string& depth_long_name, const std::string& title_note,
+                     const std::optional<io::WriterPosition>& resume)
     : wet_depth_m_(scene.output.wet_depth_m),
       bed_m_(grid.nx * grid.ny, 0.0),
       statistics_(grid.nx * grid.ny, scene.output.wet_depth_m) {
@@ -43,9 +66,18 @@ MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& t
       }
     }
   }
-  writing([&] { writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, layout, meta); });
+  if (resume) {
+    try {
+      writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, layout, meta, *resume);
+    } catch (const std::exception& e) {
+      throw io::CheckpointError(std::string("cannot go on with the output the stopped run left: ") +
+                                e.what());
+    }
+  } else {
+    writing([&] { writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, layout, meta); });
+  }
   // A scene without a bed stands on z = 0 everywhere: nothing worth a map.
-  if (terrain.bed) writing([&] { writer_->write_bed(bed_m_); });
+  if (terrain.bed && !writer_->bed_written()) writing([&] { writer_->write_bed(bed_m_); });
 }
 
 void MapOutput::write_maps(double time_s, const GriddedState& state,
@@ -77,8 +109,54 @@ void MapOutput::sample(double time_s, const GriddedState& state,
 void MapOutput::finish() {
   writing([&] {
     writer_->write_summary(statistics_);
+    writer_->write_status("complete", "");
     writer_->finish();
   });
+}
+
+void MapOutput::close_stopped(const std::string& status, const std::string& message) {
+  writing([&] {
+    writer_->write_summary(statistics_);
+    writer_->write_status(status, message);
+    writer_->close_partial();
+  });
+}
+
+void MapOutput::flush() {
+  writing([&] { writer_->flush(); });
+}
+
+void MapOutput::save_state(swe::StateWriter& out) const {
+  out.text(kOutputStateLabel);
+  const io::WriterPosition position = writer_->position();
+  for (const std::size_t n :
+       {position.records, position.series_records, position.particle_samples}) {
+    out.count(n);
+  }
+  out.count(statistics_.samples());
+  out.number(statistics_.last_time());
+  for (const auto map : statistics_.maps()) out.numbers(map);
+}
+
+io::WriterPosition MapOutput::read_position(swe::StateReader& in) {
+  in.expect(kOutputStateLabel);
+  io::WriterPosition position;
+  position.records = in.count();
+  position.series_records = in.count();
+  position.particle_samples = in.count();
+  return position;
+}
+
+void MapOutput::restore_statistics(swe::StateReader& in) {
+  const std::size_t samples = in.count();
+  const double last_time_s = in.number();
+  std::vector<std::vector<double>> maps;
+  for (int k = 0; k < 5; ++k) maps.push_back(in.numbers());
+  try {
+    statistics_.restore(samples, last_time_s, std::move(maps));
+  } catch (const std::invalid_argument& e) {
+    throw swe::StateError(in.what() + " does not fit this scene's output grid: " + e.what());
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -32,6 +32,12 @@ std::string clock_text(double seconds) {
 
 }  // namespace
 
+void Progress::resume_from(double time_s, std::size_t steps) {
+  start_fraction_ = std::clamp(time_s / end_time_s_, 0.0, 1.0);
+  start_steps_ = steps;
+  while (next_fraction_ <= start_fraction_) next_fraction_ += 0.1;
+}
+
 void Progress::update(double time_s, std::size_t steps, std::size_t particles) {
   if (!enabled_) return;
   const auto now = Clock::now();
@@ -43,8 +49,10 @@ void Progress::update(double time_s, std::size_t steps, std::size_t particles) {
   }
   last_draw_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  const double steps_per_s = elapsed > 0.0 ? static_cast<double>(steps) / elapsed : 0.0;
-  const double left = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : -1.0;
+  const double steps_per_s =
+      elapsed > 0.0 ? static_cast<double>(steps - std::min(steps, start_steps_)) / elapsed : 0.0;
+  const double done = fraction - start_fraction_;
+  const double left = done > 0.0 ? elapsed * (1.0 - fraction) / done : -1.0;
   if (terminal_) {
     constexpr int width = 30;
     const int filled = static_cast<int>(fraction * width);

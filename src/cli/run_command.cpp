@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "swemps/cli/compare_command.hpp"
+#include "swemps/cli/output_target.hpp"
 #include "swemps/cli/runs.hpp"
 #include "swemps/cli/study_command.hpp"
 #include "swemps/scenario/scenario.hpp"
@@ -22,10 +23,13 @@ void run(const Options& options, const std::string& command_line) {
   }
   auto scene = scenario::load(options.scenario);
   if (options.output) {
-    scene.output.path = std::filesystem::absolute(*options.output).lexically_normal();
+    // absolute() throws on an empty path, which check_output_target reports instead.
+    const auto& path = *options.output;
+    scene.output.path = path.empty() ? path : std::filesystem::absolute(path).lexically_normal();
   }
+  check_output_target(scene.output.path);
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  const RunContext context{options.scenario, command_line, options.verbosity != Verbosity::quiet};
+  const RunContext context = run_context(options, command_line, scene);
   if (scene.model == scenario::Model::ns) {
     run_ns(scene, context);
   } else {

@@ -1,17 +1,24 @@
-// A shallow-water run: scene -> swe::Simulation -> netCDF maps, gauges and volume balance.
+// A shallow-water run: scene -> swe::Simulation -> netCDF maps, gauges and volume balance;
+// and how it fails well: a breakdown or a stop signal still leaves a readable file holding the
+// state reached, and a checkpoint to go on from.
 
 #include <omp.h>
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/stop_signals.hpp"
 #include "swemps/cli/timing.hpp"
+#include "swemps/io/checkpoint.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/swe/simulation.hpp"
 
@@ -20,6 +27,8 @@ namespace swemps::cli {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+constexpr const char* kRunStateLabel = "swe-mps shallow-water run";
 
 // When the next series sample is due: the first multiple of `interval_s` after `time_s`.
 // Samples are taken at the end of the first step that reaches one, so that sampling never
@@ -35,17 +44,24 @@ double next_sample_time(double time_s, double interval_s) {
 class SweOutput {
  public:
   SweOutput(const scenario::Scenario& scene, const scenario::Terrain& terrain,
-            const swe::RegularGrid& grid, const RunContext& context)
+            const swe::RegularGrid& grid, const RunContext& context,
+            const std::optional<io::WriterPosition>& resume)
       : grid_(grid),
         gauges_(scene.output.gauges),
         write_particles_(scene.output.write_particles),
-        file_(scene, terrain, grid, context, scene.output.write_particles, "", "") {}
+        file_(scene, terrain, grid, context, scene.output.write_particles, "", "", resume) {}
 
+  // At most once a state: a run that stops just after writing an output time's maps does not
+  // write them twice.
   void write_maps(swe::Simulation& sim) {
+    if (mapped_ && mapped_step_ == sim.steps() && mapped_time_s_ == sim.time()) return;
     const auto start = Clock::now();
     const auto& f = fields(sim);
     file_.write_maps(sim.time(), {f.depth, f.u, f.v},
                      write_particles_ ? &sim.particles() : nullptr);
+    mapped_ = true;
+    mapped_step_ = sim.steps();
+    mapped_time_s_ = sim.time();
     seconds_ += seconds_since(start);
   }
 
@@ -71,8 +87,21 @@ class SweOutput {
   }
 
   void finish() { file_.finish(); }
+  void close_stopped(const std::string& status, const std::string& message) {
+    file_.close_stopped(status, message);
+  }
+  void flush() { file_.flush(); }
+  void save_state(swe::StateWriter& out) const { file_.save_state(out); }
+  void restore_statistics(swe::StateReader& in) { file_.restore_statistics(in); }
+  // The state of a restored simulation was written by the run that stopped there.
+  void restored(const swe::Simulation& sim) {
+    mapped_ = true;
+    mapped_step_ = sim.steps();
+    mapped_time_s_ = sim.time();
+  }
   double seconds() const { return seconds_; }
   const std::filesystem::path& path() const { return file_.path(); }
+  const std::filesystem::path& partial_path() const { return file_.partial_path(); }
 
  private:
   // The gridded fields of the current state, computed once per state (maps and sample share
@@ -92,10 +121,70 @@ class SweOutput {
   bool write_particles_;
   MapOutput file_;
   swe::GridFields fields_;
-  std::size_t fields_step_ = 0, sampled_step_ = 0;
-  bool has_fields_ = false, sampled_ = false;
+  std::size_t fields_step_ = 0, sampled_step_ = 0, mapped_step_ = 0;
+  bool has_fields_ = false, sampled_ = false, mapped_ = false;
+  double mapped_time_s_ = 0.0;
   double seconds_ = 0.0;
 };
+
+// What a run restarted from a checkpoint goes on from.
+struct Restart {
+  std::filesystem::path file;
+  io::Checkpoint checkpoint;
+};
+
+// Reads the checkpoint and checks that it was written for this scenario file, before anything
+// is built: a wrong checkpoint is refused at once.
+Restart read_restart(const std::filesystem::path& file, std::uint64_t scenario_hash,
+                     const std::filesystem::path& scenario_file) {
+  Restart r{file, io::read_checkpoint(file)};
+  if (r.checkpoint.scenario_hash != scenario_hash) {
+    throw io::CheckpointError("the checkpoint '" + file.string() + "' was written for another " +
+                              "scenario than '" + scenario_file.string() +
+                              "' (its text has changed, or it is another file): a run can only "
+                              "go on with the scene it started with");
+  }
+  const std::string program = std::string("swe-mps ") + SWEMPS_VERSION;
+  if (r.checkpoint.program != program) {
+    spdlog::warn(
+        "the checkpoint was written by {}, this is {}: the run goes on, but need not "
+        "match one run straight through bit for bit",
+        r.checkpoint.program, program);
+  }
+  return r;
+}
+
+// Restores the simulation and the run's own state (the output position, the next series
+// sample, the flood statistics) from a checkpoint, within the run's output set up from it.
+class RunState {
+ public:
+  explicit RunState(const Restart& restart)
+      : in_(restart.checkpoint.run, "the checkpoint '" + restart.file.string() + "'") {
+    in_.expect(kRunStateLabel);
+    next_sample_s_ = in_.number();
+    position_ = MapOutput::read_position(in_);
+  }
+  double next_sample_s() const { return next_sample_s_; }
+  const io::WriterPosition& position() const { return position_; }
+  // The rest of the record: the flood statistics.
+  void restore_statistics(SweOutput& output) {
+    output.restore_statistics(in_);
+    in_.expect_end();
+  }
+
+ private:
+  swe::StateReader in_;
+  double next_sample_s_ = 0.0;
+  io::WriterPosition position_;
+};
+
+std::vector<std::byte> run_state(const SweOutput& output, double next_sample_s) {
+  swe::StateWriter out;
+  out.text(kRunStateLabel);
+  out.number(next_sample_s);
+  output.save_state(out);
+  return {out.bytes().begin(), out.bytes().end()};
+}
 
 void log_starting_volumes(const scenario::StartingVolumes& v) {
   if (!v.balance) {
@@ -125,12 +214,15 @@ void log_starting_volumes(const scenario::StartingVolumes& v) {
   }
 }
 
-void log_summary(const swe::Simulation& sim, std::size_t initial_particles, double wall_s,
+// `ending`: "done", or how the run stopped early.
+void log_summary(const swe::Simulation& sim, const std::string& ending,
+                 std::size_t initial_particles, std::size_t initial_particle_steps, double wall_s,
                  double output_s, const std::filesystem::path& path) {
   const auto& t = sim.phase_times();
   const double steps_per_s =
-      wall_s > 0.0 ? static_cast<double>(sim.particle_steps()) / wall_s : 0.0;
-  spdlog::info("done: {} steps to t = {:.6g} s, particles {} -> {}", sim.steps(), sim.time(),
+      wall_s > 0.0 ? static_cast<double>(sim.particle_steps() - initial_particle_steps) / wall_s
+                   : 0.0;
+  spdlog::info("{}: {} steps to t = {:.6g} s, particles {} -> {}", ending, sim.steps(), sim.time(),
                initial_particles, sim.particles().fluid_count());
   spdlog::info("wall time {:.3f} s, {:.4g} particle-steps/s ({} threads)", wall_s, steps_per_s,
                omp_get_max_threads());
@@ -142,8 +234,8 @@ void log_summary(const swe::Simulation& sim, std::size_t initial_particles, doub
       sim.relative_volume_change());
   spdlog::info(
       "time per phase: sort {:.3f} s, neighbours {:.3f} s, depth {:.3f} s, gradient {:.3f} s, "
-      "integrate {:.3f} s, walls {:.3f} s, output {:.3f} s",
-      t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, output_s);
+      "integrate {:.3f} s, walls {:.3f} s, checks {:.3f} s, output {:.3f} s",
+      t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, t.checks, output_s);
   for (const auto& e : sim.effect_times()) {
     spdlog::info("effect '{}': {:.3f} s{}", e.name, e.seconds,
                  e.report.empty() ? "" : " (" + e.report + ")");
@@ -168,18 +260,70 @@ double swe_front(const particles::SweParticles& p, double wet_depth_m) {
 RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
                   const FrontObserver& front) {
   const auto start = Clock::now();
+  // From the start: a signal while the scene is built stops the run before its first step.
+  StopSignals signals;
+  const bool checkpoints = context.checkpoints || context.restart;
+  const std::uint64_t scenario_hash = checkpoints ? io::file_hash(context.scenario_file) : 0;
+  std::optional<Restart> restart;
+  if (context.restart)
+    restart = read_restart(*context.restart, scenario_hash, context.scenario_file);
+
   auto built = scenario::build(scene);
   auto& sim = built.simulation;
+  std::optional<RunState> resumed;
+  if (restart) {
+    try {
+      swe::StateReader in(restart->checkpoint.simulation,
+                          "the checkpoint '" + restart->file.string() + "'");
+      sim.restore_state(in);
+      in.expect_end();
+      resumed.emplace(*restart);
+    } catch (const swe::StateError& e) {
+      throw io::CheckpointError(e.what());
+    }
+  }
   const std::size_t initial_particles = sim.particles().fluid_count();
+  const std::size_t initial_particle_steps = sim.particle_steps();
   spdlog::info("scene '{}': {} particles, end time {} s, {} walls, {} inflows, output {}",
                scene.name, initial_particles, scene.end_time_s, scene.walls.size(),
                scene.inflows.size(), scene.output.path.string());
-  log_starting_volumes(built.volumes);
+  if (restart) {
+    spdlog::info("going on from checkpoint {} at t = {:.9g} s (step {})", restart->file.string(),
+                 sim.time(), sim.steps());
+  } else {
+    log_starting_volumes(built.volumes);
+  }
 
   const auto grid = scenario::output_grid(scene, built.terrain);
-  SweOutput output(scene, built.terrain, grid, context);
-  output.write_maps(sim);
-  output.sample(sim);
+  std::optional<io::WriterPosition> resume_at;
+  if (resumed) resume_at = resumed->position();
+  const std::filesystem::path checkpoint_file = checkpoint_path(scene.output.path);
+  if (!restart && context.checkpoints) {
+    std::filesystem::path partial = scene.output.path;
+    partial += ".partial";
+    std::error_code ec;
+    if (std::filesystem::exists(partial, ec)) {
+      spdlog::warn(
+          "replacing {}, left by an earlier run that did not finish (--restart {} would "
+          "have gone on with it)",
+          partial.string(), checkpoint_file.string());
+    }
+  }
+  SweOutput output(scene, built.terrain, grid, context, resume_at);
+  const double interval = scene.output.series_interval_s;
+  double next_sample = next_sample_time(0.0, interval);
+  if (resumed) {
+    try {
+      resumed->restore_statistics(output);
+    } catch (const swe::StateError& e) {
+      throw io::CheckpointError(e.what());
+    }
+    next_sample = resumed->next_sample_s();
+    output.restored(sim);
+  } else {
+    output.write_maps(sim);
+    output.sample(sim);
+  }
   // The depths the front is read from are those the next step uses (refresh() is cached).
   const auto observe = [&] {
     if (!front) return;
@@ -188,8 +332,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   };
   observe();
   Progress progress(scene.end_time_s, context.progress);
-  const double interval = scene.output.series_interval_s;
-  double next_sample = next_sample_time(0.0, interval);
+  progress.resume_from(sim.time(), sim.steps());
   const auto after_step = [&] {
     progress.update(sim.time(), sim.steps(), sim.particles().fluid_count());
     observe();
@@ -197,16 +340,99 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     output.sample(sim);
     next_sample = next_sample_time(sim.time(), interval);
   };
-  for (const double target : scene.output.times_s) {
-    sim.advance_to(target, after_step);
-    output.write_maps(sim);
-    output.sample(sim);
-    spdlog::debug("wrote output at t = {} s", sim.time());
+
+  // The file on disk first holds every record the checkpoint counts, so that a run killed
+  // outright after the checkpoint can still go on from it.
+  const auto write_checkpoint = [&] {
+    const auto checkpoint_start = Clock::now();
+    output.flush();
+    io::Checkpoint c;
+    c.scenario_hash = scenario_hash;
+    c.program = std::string("swe-mps ") + SWEMPS_VERSION;
+    c.time_s = sim.time();
+    c.steps = sim.steps();
+    swe::StateWriter state;
+    sim.save_state(state);
+    c.simulation.assign(state.bytes().begin(), state.bytes().end());
+    c.run = run_state(output, next_sample);
+    writing([&] { io::write_checkpoint(checkpoint_file, c); });
+    spdlog::info("checkpoint at t = {:.9g} s (step {}): {} ({:.1f} MB, {:.3f} s)", sim.time(),
+                 sim.steps(), checkpoint_file.string(),
+                 static_cast<double>(c.simulation.size() + c.run.size()) / 1e6,
+                 seconds_since(checkpoint_start));
+  };
+  // A run that stops early: the state it stopped at as a last map record (the state a
+  // breakdown went back to is the last good one), a checkpoint, then the file closed as
+  // <output>.partial with the status. Returns what was written, for the closing message.
+  const auto close_early = [&](const std::string& status, const std::string& message,
+                               bool state_kept) {
+    if (state_kept) output.write_maps(sim);
+    if (state_kept && context.checkpoints) write_checkpoint();
+    output.close_stopped(status, message);
+    progress.finish();
+    log_summary(sim, status == "breakdown" ? "broke down" : "stopped", initial_particles,
+                initial_particle_steps, seconds_since(start), output.seconds(),
+                output.partial_path());
+    if (!state_kept) return output.partial_path().string();
+    std::string written =
+        fmt::format("the state at t = {:.9g} s to {}", sim.time(), output.partial_path().string());
+    if (context.checkpoints) written += " and the checkpoint " + checkpoint_file.string();
+    return written;
+  };
+
+  int stop_signal = 0;
+  std::size_t outputs = 0;
+  try {
+    for (const double target : scene.output.times_s) {
+      if (sim.reached(target)) continue;  // written before the run was restarted
+      while (!sim.reached(target) && (stop_signal = signals.received()) == 0) {
+        sim.step_towards(target);
+        after_step();
+      }
+      // A stop that lands on an output time still writes it as the run straight through
+      // would, series sample included, so that the restarted run's file is the same.
+      if (sim.reached(target)) {
+        output.write_maps(sim);
+        output.sample(sim);
+        spdlog::debug("wrote output at t = {} s", sim.time());
+        ++outputs;
+        if (context.checkpoints && context.checkpoint_every > 0 && stop_signal == 0 &&
+            outputs % static_cast<std::size_t>(context.checkpoint_every) == 0 &&
+            target < scene.output.times_s.back()) {
+          write_checkpoint();
+        }
+      }
+      if (stop_signal != 0) break;
+    }
+    // A signal during the last step stops nothing: the run is complete.
+    if (stop_signal != 0 && !sim.reached(scene.output.times_s.back())) {
+      const std::string what = fmt::format("stopped by {} at t = {:.9g} s (step {})",
+                                           signal_name(stop_signal), sim.time(), sim.steps());
+      spdlog::warn("{}: writing the state reached and closing the output", what);
+      const std::string written = close_early("interrupted", what, true);
+      std::string message = what + "; wrote " + written;
+      if (context.checkpoints) {
+        message += "; go on with: swe-mps run " + context.scenario_file.string() + " --restart " +
+                   checkpoint_file.string();
+      }
+      throw RunStopped(stop_signal, message);
+    }
+  } catch (const swe::SimulationError& e) {
+    // The breakdown is what the run ends with, whatever happens while its state is written.
+    try {
+      const std::string written = close_early("breakdown", e.what(), e.at_last_good_state());
+      spdlog::error("the simulation broke down; wrote {}", written);
+    } catch (const std::exception& also) {
+      spdlog::error("the simulation broke down, and its last good state could not be written: {}",
+                    also.what());
+    }
+    throw;
   }
   progress.finish();
   output.finish();
   const double wall_s = seconds_since(start);
-  log_summary(sim, initial_particles, wall_s, output.seconds(), output.path());
+  log_summary(sim, "done", initial_particles, initial_particle_steps, wall_s, output.seconds(),
+              output.path());
   RunReport report;
   report.steps = sim.steps();
   report.fluid_particles = initial_particles;

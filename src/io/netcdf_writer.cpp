@@ -518,6 +518,153 @@ class Definer {
   const Grid& grid_;
 };
 
+// Finds the dimensions and variables of a file an earlier writer defined, and checks that they
+// have the layout this writer would have given them.
+class Resumer {
+ public:
+  Resumer(int ncid, const std::filesystem::path& file) : ncid_(ncid), file_(file) {}
+
+  detail::NetcdfIds find(const Layout& layout, const WriterPosition& position) const {
+    detail::NetcdfIds ids;
+    ids.y_dim = dimension("y");
+    ids.x_dim = dimension("x");
+    require_length("y", ids.y_dim, layout.grid.ny);
+    require_length("x", ids.x_dim, layout.grid.nx);
+    require_axis("x", layout.grid.x0, layout.grid.dx, layout.grid.nx);
+    require_axis("y", layout.grid.y0, layout.grid.dy, layout.grid.ny);
+    ids.time = variable("time");
+    ids.depth = variable("depth");
+    ids.surface = variable("surface_elevation");
+    ids.u = variable("u");
+    ids.v = variable("v");
+    const bool has_particles = optional_variable("particle_count") >= 0;
+    if (has_particles != layout.particles) {
+      mismatch(layout.particles ? "has no particles, which this run writes"
+                                : "has particles, which this run does not write");
+    }
+    if (layout.particles) {
+      ids.count = variable("particle_count");
+      ids.px = variable("particle_x");
+      ids.py = variable("particle_y");
+      ids.pu = variable("particle_u");
+      ids.pv = variable("particle_v");
+      ids.ph = variable("particle_depth");
+      ids.pvol = variable("particle_volume");
+      ids.parea = variable("particle_area");
+    }
+    ids.series_time = variable("series_time");
+    ids.in_domain = variable("volume_in_domain");
+    ids.inflow = variable("volume_inflow");
+    ids.outflow = variable("volume_outflow");
+    ids.error = variable("volume_error");
+    int gauge_dim = -1;
+    std::size_t gauges = 0;
+    if (nc_inq_dimid(ncid_, "gauge", &gauge_dim) == NC_NOERR) {
+      ok(nc_inq_dimlen(ncid_, gauge_dim, &gauges), "read the length of dimension gauge");
+    }
+    if (gauges != layout.gauges.size()) {
+      mismatch("has " + std::to_string(gauges) + " gauges, this run " +
+               std::to_string(layout.gauges.size()));
+    }
+    if (gauges > 0) {
+      ids.gauge_depth = variable("gauge_depth");
+      ids.gauge_u = variable("gauge_u");
+      ids.gauge_v = variable("gauge_v");
+    }
+
+    const std::size_t records = length_of(ids.time), series = length_of(ids.series_time);
+    if (records < position.records || series < position.series_records) {
+      mismatch("holds " + std::to_string(records) + " map times and " + std::to_string(series) +
+               " series times, fewer than the " + std::to_string(position.records) + " and " +
+               std::to_string(position.series_records) + " written before the checkpoint");
+    }
+    if (layout.particles && position.records > 0) {
+      std::vector<int> counts(position.records);
+      const std::size_t start = 0, count = position.records;
+      ok(nc_get_vara_int(ncid_, ids.count, &start, &count, counts.data()),
+         "read variable particle_count");
+      std::size_t samples = 0;
+      for (const int c : counts) samples += static_cast<std::size_t>(std::max(c, 0));
+      if (samples != position.particle_samples) {
+        mismatch("holds " + std::to_string(samples) + " particle samples in its first " +
+                 std::to_string(position.records) + " map times, not the " +
+                 std::to_string(position.particle_samples) + " written before the checkpoint");
+      }
+    }
+    return ids;
+  }
+
+  bool has_variable(const char* name) const { return optional_variable(name) >= 0; }
+
+  int optional_variable(const char* name) const {
+    int id = -1;
+    return nc_inq_varid(ncid_, name, &id) == NC_NOERR ? id : -1;
+  }
+
+  std::string text_attribute(const char* name) const {
+    std::size_t length = 0;
+    if (nc_inq_attlen(ncid_, NC_GLOBAL, name, &length) != NC_NOERR) return {};
+    std::string value(length, '\0');
+    ok(nc_get_att_text(ncid_, NC_GLOBAL, name, value.data()),
+       std::string("read attribute ") + name);
+    return value;
+  }
+
+ private:
+  void ok(int status, const std::string& purpose) const { check(status, purpose, file_); }
+
+  [[noreturn]] void mismatch(const std::string& what) const {
+    throw std::runtime_error("netCDF: the file " + quoted(file_) +
+                             " does not match the run that is to continue it: it " + what);
+  }
+
+  int dimension(const char* name) const {
+    int id = -1;
+    if (nc_inq_dimid(ncid_, name, &id) != NC_NOERR) {
+      mismatch(std::string("has no dimension ") + name);
+    }
+    return id;
+  }
+
+  int variable(const char* name) const {
+    const int id = optional_variable(name);
+    if (id < 0) mismatch(std::string("has no variable ") + name);
+    return id;
+  }
+
+  std::size_t length_of(int varid) const {
+    int dim = -1;
+    ok(nc_inq_vardimid(ncid_, varid, &dim), "read the dimensions of a time variable");
+    std::size_t length = 0;
+    ok(nc_inq_dimlen(ncid_, dim, &length), "read the length of a time dimension");
+    return length;
+  }
+
+  void require_length(const char* name, int dim, std::size_t expected) const {
+    std::size_t length = 0;
+    ok(nc_inq_dimlen(ncid_, dim, &length), std::string("read the length of dimension ") + name);
+    if (length != expected) {
+      mismatch(std::string("has ") + std::to_string(length) + " cells along " + name +
+               ", this run's grid " + std::to_string(expected));
+    }
+  }
+
+  // The axis as the writer computed it, compared exactly: the same grid gives the same values.
+  void require_axis(const char* name, double origin, double step, std::size_t n) const {
+    std::vector<double> values(n);
+    ok(nc_get_var_double(ncid_, variable(name), values.data()),
+       std::string("read variable ") + name);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (values[i] != origin + static_cast<double>(i) * step) {
+        mismatch(std::string("has other cell centres along ") + name + " than this run's grid");
+      }
+    }
+  }
+
+  int ncid_;
+  const std::filesystem::path& file_;
+};
+
 void validate(const Layout& layout, const std::filesystem::path& path) {
   const Grid& g = layout.grid;
   // A zero length would silently turn x or y into a second unlimited dimension.
@@ -562,6 +709,40 @@ NetcdfWriter::NetcdfWriter(std::filesystem::path path, const Layout& layout,
     std::filesystem::remove(partial_path_, ignored);
     throw;
   }
+}
+
+NetcdfWriter::NetcdfWriter(std::filesystem::path path, const Layout& layout,
+                           const RunMetadata& meta, const WriterPosition& position)
+    : path_(std::move(path)), layout_(layout) {
+  validate(layout_, path_);
+  partial_path_ = path_;
+  partial_path_ += ".partial";
+  const int status = nc_open(partial_path_.c_str(), NC_WRITE, &ncid_);
+  if (status != NC_NOERR) {
+    ncid_ = -1;
+    throw std::runtime_error("netCDF: cannot open the file " + quoted(partial_path_) +
+                             " to continue it: " + nc_strerror(status));
+  }
+  try {
+    const Resumer resumer{ncid_, partial_path_};
+    ids_ = resumer.find(layout_, position);
+    bed_written_ = resumer.has_variable("bed_elevation");
+    // CF's history is a list of the commands that made the file, one a line.
+    std::string history = resumer.text_attribute("history");
+    if (!history.empty()) history += '\n';
+    history += meta.history;
+    const Definer def{ncid_, partial_path_, layout_.grid};
+    def.redefine();
+    def.text(NC_GLOBAL, "history", history);
+    def.end_define();
+  } catch (...) {
+    nc_close(ncid_);
+    ncid_ = -1;
+    throw;
+  }
+  records_ = position.records;
+  series_records_ = position.series_records;
+  particle_samples_ = position.particle_samples;
 }
 
 NetcdfWriter::~NetcdfWriter() {
@@ -737,6 +918,7 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
                                 std::to_string(cells));
   }
   const Definer def{ncid_, partial_path_, layout_.grid};
+  const Resumer existing{ncid_, partial_path_};
   const std::string wet_rule = "wet: depth > " + exact_text(stats.wet_depth()) + " m";
   const std::string velocity_rule =
       wet_rule + "; over wet samples with velocity only (0 where never wet)";
@@ -766,7 +948,10 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
   std::array<int, std::size(summary)> ids{};
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const auto& s = summary[k];
-    ids[k] = def.static_map_var(ids_, s.name, s.units, s.standard_name, s.long_name);
+    // A resumed file may hold the summary the stopped run wrote; it is replaced.
+    ids[k] = existing.optional_variable(s.name);
+    if (ids[k] < 0)
+      ids[k] = def.static_map_var(ids_, s.name, s.units, s.standard_name, s.long_name);
     if (s.cell_methods) def.text(ids[k], "cell_methods", s.cell_methods);
     def.text(ids[k], "comment",
              "from sample_count samples of the gridded fields; fill value where the cell "
@@ -782,6 +967,33 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
           std::string("write variable ") + summary[k].name, partial_path_);
   }
   summary_written_ = true;
+}
+
+void NetcdfWriter::write_status(const std::string& status, const std::string& message) {
+  require_open("write_status");
+  const Definer def{ncid_, partial_path_, layout_.grid};
+  def.redefine();
+  def.text(NC_GLOBAL, "run_status", status);
+  if (!message.empty()) {
+    def.text(NC_GLOBAL, "run_status_message", message);
+  } else {
+    // A resumed run that completes drops the message of the stop it continued from.
+    const int removed = nc_del_att(ncid_, NC_GLOBAL, "run_status_message");
+    if (removed != NC_ENOTATT) check(removed, "remove attribute run_status_message", partial_path_);
+  }
+  def.end_define();
+}
+
+void NetcdfWriter::flush() {
+  require_open("flush");
+  check(nc_sync(ncid_), "write the file to disk", partial_path_);
+}
+
+void NetcdfWriter::close_partial() {
+  require_open("close_partial");
+  const int status = nc_close(ncid_);
+  ncid_ = -1;
+  check(status, "close the file", partial_path_);
 }
 
 void NetcdfWriter::finish() {

@@ -8,11 +8,16 @@
 #include <ogr_spatialref.h>
 
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <limits>
 #include <memory>
 #include <mutex>
 #include <numbers>
+#include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -208,7 +213,39 @@ GDALDatasetUniquePtr warp_band(GDALDataset& source, int band_index,
   return warped;
 }
 
+// Why GDAL could not open a dataset, in the user's terms. A name GDAL cannot open may still be
+// a dataset name rather than a file, so the file is looked at only after GDAL has had its try.
+std::string why_not_opened(const std::filesystem::path& name) {
+  const auto wrapped = split_dataset_name(name.string());
+  const std::filesystem::path file = wrapped ? std::filesystem::path(wrapped->file) : name;
+  const std::string which = wrapped ? "the file '" + file.string() + "' it names " : "";
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(status)) return wrapped ? which + "is not found" : "file not found";
+  if (std::filesystem::is_directory(status)) {
+    return wrapped ? which + "is a folder" : "is a folder, not a raster file";
+  }
+  errno = 0;  // so that a failure without a system reason is not blamed on an old one
+  if (std::ifstream probe(file, std::ios::binary); !probe) {
+    const int err = errno;
+    return which + "cannot be read: " + (err != 0 ? std::strerror(err) : "cannot open it");
+  }
+  if (wrapped) {
+    return "the file exists, but GDAL's " + wrapped->driver + " driver cannot open '" +
+           wrapped->rest + "' in it" + gdal_detail();
+  }
+  return "is not a raster GDAL can read" + gdal_detail();
+}
+
 }  // namespace
+
+std::optional<WrappedDataset> split_dataset_name(const std::string& name) {
+  // The driver name needs two letters or more, so a drive letter ("C:") is no driver.
+  static const std::regex wrapped(R"re(^([A-Za-z][A-Za-z0-9_]+):"([^"]+)"(.*)$)re");
+  std::smatch m;
+  if (!std::regex_match(name, m, wrapped)) return std::nullopt;
+  return WrappedDataset{m[1].str(), m[2].str(), m[3].str()};
+}
 
 std::string utm_crs_for(double longitude_deg, double latitude_deg) {
   // Longitudes may come as 0..360; zone 1 starts at 180 W.
@@ -223,15 +260,10 @@ terrain::GriddedField read_raster(const RasterRequest& request) {
   const QuietGdalErrors quiet;
   const RasterError fail(request);
 
-  GDALDatasetUniquePtr dataset(
-      GDALDataset::Open(request.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
-  if (!dataset) {
-    // A name GDAL cannot open may still be a dataset name rather than a file, so the file
-    // check comes only after GDAL has had its try.
-    std::error_code ignored;
-    if (!std::filesystem::exists(request.path, ignored)) fail("file not found");
-    fail("is not a raster GDAL can read" + gdal_detail());
-  }
+  // Verbose: a file no driver recognises leaves a message to pass on, not silence.
+  GDALDatasetUniquePtr dataset(GDALDataset::Open(
+      request.path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY | GDAL_OF_VERBOSE_ERROR));
+  if (!dataset) fail(why_not_opened(request.path));
   const int band_count = dataset->GetRasterCount();
   if (band_count == 0) {
     fail(
@@ -245,6 +277,21 @@ terrain::GriddedField read_raster(const RasterRequest& request) {
   std::array<double, 6> gt{};
   if (dataset->GetGeoTransform(gt.data()) != CE_None) {
     fail("has no georeferencing (no geotransform)");
+  }
+  // A header can promise any number of cells; the allocator would fail on them, or the
+  // kernel kill the process, after a long wait.
+  const double cells = static_cast<double>(dataset->GetRasterXSize()) * dataset->GetRasterYSize();
+  const double needed_bytes = cells * kRasterBytesPerCell;
+  if (request.memory_limit_bytes > 0 &&
+      needed_bytes > static_cast<double>(request.memory_limit_bytes)) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "holds " << dataset->GetRasterXSize() << " x " << dataset->GetRasterYSize()
+      << " cells, which need about " << needed_bytes << " bytes to read (" << kRasterBytesPerCell
+      << " per cell), more than the " << static_cast<double>(request.memory_limit_bytes)
+      << " bytes of memory swe-mps may use here; crop it to the scene's area or coarsen it first "
+         "(gdal_translate -projwin or -tr)";
+    fail(s.str());
   }
 
   OGRSpatialReference target;

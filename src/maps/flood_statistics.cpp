@@ -36,6 +36,31 @@ FloodStatistics::FloodStatistics(std::size_t cells, double wet_depth_m)
   }
 }
 
+std::vector<std::span<const double>> FloodStatistics::maps() const {
+  return {max_depth_, max_speed_, max_hazard_, arrival_time_, inundation_duration_};
+}
+
+void FloodStatistics::restore(std::size_t samples, double last_time_s,
+                              std::vector<std::vector<double>> maps) {
+  if (maps.size() != 5) {
+    throw std::invalid_argument("FloodStatistics::restore: " + std::to_string(maps.size()) +
+                                " maps, expected 5");
+  }
+  for (const auto& m : maps) {
+    if (m.size() != cells()) {
+      throw std::invalid_argument("FloodStatistics::restore: a map of " + std::to_string(m.size()) +
+                                  " values, expected " + std::to_string(cells()));
+    }
+  }
+  samples_ = samples;
+  last_time_s_ = last_time_s;
+  max_depth_ = std::move(maps[0]);
+  max_speed_ = std::move(maps[1]);
+  max_hazard_ = std::move(maps[2]);
+  arrival_time_ = std::move(maps[3]);
+  inundation_duration_ = std::move(maps[4]);
+}
+
 void FloodStatistics::update(double time_s, std::span<const double> depth,
                              std::span<const double> u, std::span<const double> v) {
   const std::size_t n = cells();

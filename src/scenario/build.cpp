@@ -16,9 +16,11 @@
 #include "swemps/io/hydrograph_csv.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/particles/seeding.hpp"
+#include "swemps/scenario/memory_check.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/bed_slope.hpp"
 #include "swemps/swe/eddy_viscosity.hpp"
+#include "swemps/swe/shock_viscosity.hpp"
 #include "swemps/swe/manning_friction.hpp"
 
 namespace swemps::scenario {
@@ -82,6 +84,7 @@ class SceneCrs {
     io::RasterRequest r;
     r.path = spec.path;
     r.purpose = purpose;
+    r.memory_limit_bytes = usable_memory_bytes();
     if (!spec.crs.empty()) {
       r.target_crs = spec.crs;
       r.crs_setting = setting;
@@ -400,6 +403,9 @@ Terrain read_terrain(const Scenario& scene) {
 
 BuiltScene build(const Scenario& scene) {
   Terrain terrain = read_terrain(scene);
+  // The rasters are in memory by now; what grows with the scene from here on is the particles
+  // and the output grid, refused here rather than by the allocator.
+  check_fits_in_memory(swe_memory_need(scene, terrain), usable_memory_bytes());
   auto walls = make_walls(scene.walls);
   // Effects in the order they act within their stage.
   std::vector<std::unique_ptr<swe::Effect>> effects;
@@ -418,6 +424,9 @@ BuiltScene build(const Scenario& scene) {
   // A force: it acts with the depth gradient and the bed slope, before friction (velocity stage).
   if (scene.eddy_viscosity_m2_s) {
     effects.push_back(std::make_unique<swe::EddyViscosity>(*scene.eddy_viscosity_m2_s));
+  }
+  if (scene.shock_viscosity) {
+    effects.push_back(std::make_unique<swe::ShockViscosity>(*scene.shock_viscosity));
   }
   if (terrain.roughness) {
     effects.push_back(std::make_unique<swe::ManningFriction>(

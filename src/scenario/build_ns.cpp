@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "swemps/scenario/build.hpp"
+#include "swemps/scenario/memory_check.hpp"
 
 namespace swemps::scenario {
 
@@ -81,6 +82,7 @@ ns::TankSpec<Dim> ns_tank(const Scenario& scene) {
 template <int Dim>
 ns::Simulation<Dim> make_ns_simulation(const Scenario& scene) {
   const ns::TankSpec<Dim> tank = ns_tank<Dim>(scene);
+  check_fits_in_memory(ns_memory_need(scene, tank), usable_memory_bytes());
   ns::Particles<Dim> particles;
   try {
     particles = ns::fill_tank<Dim>(tank);

@@ -10,11 +10,11 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
-#include <regex>
 #include <string_view>
 #include <utility>
 
 #include "json_reading.hpp"
+#include "swemps/io/raster_reader.hpp"
 #include "swemps/kernels/any_kernel.hpp"
 #include "swemps/scenario/scenario.hpp"
 
@@ -22,14 +22,60 @@ namespace swemps::scenario {
 
 namespace {
 
+// The length of the valid UTF-8 sequence starting at text[i], or 0 when there is none.
+std::size_t utf8_length(std::string_view text, std::size_t i) {
+  const auto lead = static_cast<unsigned char>(text[i]);
+  const std::size_t length = lead < 0x80         ? 1
+                             : lead >> 5 == 0x6  ? 2
+                             : lead >> 4 == 0xE  ? 3
+                             : lead >> 3 == 0x1E ? 4
+                                                 : 0;
+  if (length == 0 || i + length > text.size()) return 0;
+  for (std::size_t k = 1; k < length; ++k) {
+    if (static_cast<unsigned char>(text[i + k]) >> 6 != 0x2) return 0;
+  }
+  return length;
+}
+
 std::string compose_message(const std::string& document, const std::string& path,
                             const std::string& found, const std::string& expected) {
   // The root has the empty pointer; "/" reads better in a message.
-  return document + " error at " + (path.empty() ? std::string("/") : path) + ": found " + found +
-         ", expected " + expected;
+  return printable_line(document + " error at " + (path.empty() ? std::string("/") : path) +
+                        ": found " + found + ", expected " + expected);
 }
 
 }  // namespace
+
+std::string printable_line(std::string_view text) {
+  static const char* const hex = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const std::size_t length = utf8_length(text, i);
+    // C0 and C1 controls (U+0080 to U+009F, two bytes from 0xC2) and DEL are escaped.
+    const bool control = length == 1 ? c < 0x20 || c == 0x7F
+                                     : c == 0xC2 && static_cast<unsigned char>(text[i + 1]) < 0xA0;
+    if (length > 0 && !control) {
+      out.append(text.substr(i, length));
+      i += length;
+      continue;
+    }
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 0xF];
+    }
+    ++i;
+  }
+  return out;
+}
 
 ScenarioError::ScenarioError(std::string json_path, std::string found, std::string expected,
                              std::string document)
@@ -252,10 +298,12 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
 // ---------------------------------------------------------------------------------------------
 // Sections of the scene
 
-swe::Settings read_numerics(const json* v, double gravity, std::optional<double>& eddy_viscosity) {
+swe::Settings read_numerics(const json* v, double gravity, std::optional<double>& eddy_viscosity,
+                            std::optional<double>& shock_viscosity) {
   const Object o(
       v ? *v : empty_object(), "/numerics",
-      {"cfl", "alpha_e", "max_area_ratio", "gradient", "min_time_step", "eddy_viscosity"},
+      {"cfl", "alpha_e", "max_area_ratio", "gradient", "min_time_step", "eddy_viscosity",
+       "shock_viscosity"},
       "an object");
   swe::Settings s;
   s.gravity_m_s2 = gravity;
@@ -274,6 +322,11 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
   if (o.find("eddy_viscosity") != nullptr) {
     eddy_viscosity = positive(o, "eddy_viscosity", "m^2/s");
   }
+  if (o.find("shock_viscosity") != nullptr) {
+    // Monaghan's alpha: above 2 it smears a shock over many particles; surely a mistake.
+    shock_viscosity = bounded(o, "shock_viscosity", 0.0, true, 2.0,
+                              "the shock viscosity coefficient alpha", 0.0);
+  }
   return s;
 }
 
@@ -282,17 +335,15 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
 
 // A file the scene names, resolved against the scenario's folder. A GDAL dataset name that
 // wraps a file, DRIVER:"file"[:rest] such as NETCDF:"dem.nc":elevation, has its file resolved
-// and the rest kept. The driver name needs two letters or more, so a drive letter is no driver.
+// and the rest kept.
 std::filesystem::path resolve_file(const std::string& text, const std::filesystem::path& base_dir) {
   const auto resolve = [&](const std::string& name) {
     std::filesystem::path p(name);
     if (p.is_relative()) p = base_dir / p;
     return std::filesystem::absolute(p).lexically_normal();
   };
-  static const std::regex wrapped(R"re(^([A-Za-z][A-Za-z0-9_]+):"([^"]+)"(.*)$)re");
-  std::smatch m;
-  if (std::regex_match(text, m, wrapped)) {
-    return m[1].str() + ":\"" + resolve(m[2].str()).string() + "\"" + m[3].str();
+  if (const auto wrapped = io::split_dataset_name(text)) {
+    return wrapped->driver + ":\"" + resolve(wrapped->file).string() + "\"" + wrapped->rest;
   }
   return resolve(text);
 }
@@ -1291,7 +1342,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
 
   const double gravity = positive(o, "gravity", "m/s^2", swe::Settings{}.gravity_m_s2);
   s.end_time_s = positive(o, "end_time", kSeconds);
-  s.numerics = read_numerics(o.find("numerics"), gravity, s.eddy_viscosity_m2_s);
+  s.numerics = read_numerics(o.find("numerics"), gravity, s.eddy_viscosity_m2_s, s.shock_viscosity);
   read_model(o, gravity, s);
 
   // The bed comes first: a raster bed may give the domain, and water filled to a level needs

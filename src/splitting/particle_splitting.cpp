@@ -172,4 +172,14 @@ std::string ParticleSplitting::report() const {
   return text;
 }
 
+void ParticleSplitting::save_state(swe::StateWriter& out) const {
+  for (const std::size_t n : {splits_, refused_at_walls_, refused_at_cap_}) out.count(n);
+}
+
+void ParticleSplitting::restore_state(swe::StateReader& in) {
+  splits_ = in.count();
+  refused_at_walls_ = in.count();
+  refused_at_cap_ = in.count();
+}
+
 }  // namespace swemps::splitting

@@ -55,4 +55,10 @@ double EddyViscosity::time_step_limit(const Settings& /*settings*/, double /*tim
   return smallest_lambda_m2_ / (4.0 * kDimension * viscosity_);
 }
 
+// The last apply()'s smallest lambda limits the next step: without it a restored run would
+// take a different first step.
+void EddyViscosity::save_state(StateWriter& out) const { out.number(smallest_lambda_m2_); }
+
+void EddyViscosity::restore_state(StateReader& in) { smallest_lambda_m2_ = in.number(); }
+
 }  // namespace swemps::swe

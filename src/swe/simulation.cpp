@@ -1,7 +1,12 @@
 #include "swemps/swe/simulation.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <initializer_list>
+#include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "swemps/neighbors/parallel.hpp"
@@ -37,6 +42,72 @@ neighbors::Coordinates<2> positions(const particles::SweParticles& p, std::size_
   return {std::span<const double>(p.x.data(), count), std::span<const double>(p.y.data(), count)};
 }
 
+// Steps between two snapshots kept for the rollback after a breakdown (keep_snapshot()).
+constexpr std::size_t kSnapshotInterval = 16;
+
+constexpr const char* kStateLabel = "swe-mps shallow-water simulation";
+
+using Field = const std::vector<double>*;
+
+// Whether the first n values of every field are finite (NaN fails |v| <= max as infinity
+// does). In parallel over chunks, each ORing its flags without a branch, so that the loop
+// vectorises and the check costs little more than reading the values once.
+bool all_finite(std::initializer_list<Field> fields, std::size_t n) {
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  std::array<std::uint8_t, reduction_chunks> broken{};
+  parallel_chunks(n, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    bool bad = false;
+    for (const Field field : fields) {
+      const double* values = field->data();
+      for (std::size_t i = begin; i < end; ++i) bad |= !(std::abs(values[i]) <= kLargest);
+    }
+    broken[chunk] = bad;
+  });
+  return std::none_of(broken.begin(), broken.end(), [](std::uint8_t b) { return b != 0; });
+}
+
+// The first particle with a non-finite value in the first field that has one: fields are
+// given in the order they derive from each other, so the particle named is where the trouble
+// began (a broken volume, not the depths of its neighbours that it broke). A serial scan, run
+// only after all_finite() has failed, so that it names the same particle for any number of
+// threads.
+std::optional<std::size_t> first_broken(std::initializer_list<Field> fields, std::size_t n) {
+  for (const Field field : fields) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!std::isfinite((*field)[i])) return i;
+    }
+  }
+  return std::nullopt;
+}
+
+bool finite(double a, double b) { return std::isfinite(a) && std::isfinite(b); }
+
+// "(a, b)" with enough digits to tell neighbouring particles apart.
+std::string pair(double a, double b) {
+  std::ostringstream out;
+  out << std::setprecision(9) << '(' << a << ", " << b << ')';
+  return out.str();
+}
+
+std::string number(double a) {
+  std::ostringstream out;
+  out << std::setprecision(9) << a;
+  return out.str();
+}
+
+// What is wrong with particle i of a refreshed state, in the order the quantities derive from
+// each other: a broken volume breaks the depth of every neighbour, a broken depth the area.
+std::string describe_refreshed(const particles::SweParticles& p, std::size_t i) {
+  const std::string who = "of particle " + std::to_string(i) + " at " + pair(p.x[i], p.y[i]) + " m";
+  if (!finite(p.x[i], p.y[i])) return "non-finite position " + pair(p.x[i], p.y[i]) + " m " + who;
+  if (!finite(p.u[i], p.v[i])) {
+    return "non-finite velocity (u, v) = " + pair(p.u[i], p.v[i]) + " m/s " + who;
+  }
+  if (!std::isfinite(p.volume[i])) return "non-finite volume " + number(p.volume[i]) + " m3 " + who;
+  if (!std::isfinite(p.depth[i])) return "non-finite depth " + number(p.depth[i]) + " m " + who;
+  return "non-finite area " + number(p.area[i]) + " m2 " + who;
+}
+
 }  // namespace
 
 Simulation::Simulation(particles::SweParticles fluid, Settings settings,
@@ -69,15 +140,276 @@ void Simulation::sort_by_cell() {
   particles_.reorder(order_);
 }
 
+// Non-finite values are looked for where they would first do harm, and almost always in
+// passes the step makes anyway. Values derive from one another, so a few stand for the rest:
+//  - positions, before the cell lists are built from them: a non-finite acceleration or
+//    velocity makes the position non-finite (x += dt u), so the move loop, which reads every
+//    position it writes, tells whether all are finite. Only where the topology stage changed the
+//    particle set (new particles have not moved yet) does a separate pass check positions and
+//    velocities, and where a resolution effect added particles, positions.
+//  - the refreshed fields, by eq 13's reduction, which refresh() computes for the next step:
+//    a non-finite depth or velocity makes a particle's step 0 or NaN, and so the minimum (NaN
+//    is never skipped); a non-finite volume makes the depth non-finite (eq 7 includes the self
+//    term); and A = V / h cannot be infinite for a finite V, as h >= V w(0).
+// Once a check fails, a serial scan finds the first broken particle and names the quantity that
+// broke first. The cost is that of the snapshots alone (docs/robustness-failing-well.md).
 void Simulation::refresh() {
   if (fresh_) return;
+  if (!positions_checked_) check_moved_positions();
   update_fields(sorting_due());
   const std::size_t before = particles_.fluid_count();
   run_effects(Stage::resolution, 0.0);
   // A resolution effect changed the particle set: the neighbour list and the sums no longer
   // describe it. Once more, without the resolution stage, so one step splits at most once.
-  if (particles_.fluid_count() != before) update_fields(sorting_due());
+  if (particles_.fluid_count() != before) {
+    check_added_particles("the resolution stage (particle splitting)");
+    update_fields(sorting_due());
+  }
+  check_refreshed_fields();
   fresh_ = true;
+  set_changed_ = false;
+  positions_checked_ = true;
+  keep_snapshot();
+}
+
+void Simulation::check_moved_positions() {
+  const std::size_t n = particles_.fluid_count();
+  auto& p = particles_;
+  {
+    ScopedTimer timer(phase_times_.checks);
+    if (all_finite({&p.x, &p.y}, n) && (!set_changed_ || all_finite({&p.u, &p.v}, n))) return;
+  }
+  const std::size_t i = *first_broken({&p.x, &p.y, &p.u, &p.v}, n);
+  // With the numbering kept, the step's acceleration and starting position of i are known.
+  const bool known = numbering_kept_ && steps_ > 0 && i < moved_count_ && i < accel_x_.size();
+  std::string what;
+  if (known && !finite(accel_x_[i], accel_y_[i])) {
+    what = "non-finite acceleration " + pair(accel_x_[i], accel_y_[i]) + " m/s2";
+  } else if (!finite(p.u[i], p.v[i])) {
+    what = "non-finite velocity (u, v) = " + pair(p.u[i], p.v[i]) + " m/s";
+  } else {
+    what = "non-finite position " + pair(p.x[i], p.y[i]) + " m";
+  }
+  what += " of particle " + std::to_string(i);
+  if (known) {
+    what += " (at " + pair(old_x_[i], old_y_[i]) + " m when the step began)";
+  } else if (finite(p.x[i], p.y[i])) {
+    what += " at " + pair(p.x[i], p.y[i]) + " m";
+  } else if (steps_ > 0) {
+    what += " (added by a topology-stage effect in this step)";
+  }
+  break_down(what);
+}
+
+// Positions only: the velocities of new particles are in eq 13's reduction.
+void Simulation::check_added_particles(const char* added_by) {
+  const std::size_t n = particles_.fluid_count();
+  auto& p = particles_;
+  {
+    ScopedTimer timer(phase_times_.checks);
+    if (all_finite({&p.x, &p.y}, n)) return;
+  }
+  const std::size_t i = *first_broken({&p.x, &p.y, &p.u, &p.v}, n);
+  break_down(describe_refreshed(p, i) + " after " + added_by);
+}
+
+void Simulation::check_refreshed_fields() {
+  fluid_limit_ = swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
+  if (fluid_limit_.dt_s > 0.0) return;
+  // NaN or 0: a non-finite value, or a step that collapsed for another reason (a negative
+  // depth), which stable_time_step() reports.
+  const std::size_t n = particles_.fluid_count();
+  auto& p = particles_;
+  const auto i = first_broken({&p.x, &p.y, &p.u, &p.v, &p.volume, &p.depth, &p.area}, n);
+  if (i) break_down(describe_refreshed(p, *i) + " after the depth summation (eq 7)");
+}
+
+void Simulation::break_down(const std::string& what_happened) {
+  std::ostringstream message;
+  message << std::setprecision(9) << what_happened;
+  if (replaying_) {
+    // The replay is deterministic: the steps it repeats passed every check before.
+    throw SimulationError(message.str() + " while replaying steps to the last good state", false);
+  }
+  if (steps_ == 0) {
+    message << " in the starting state (t = " << time_s_ << " s): there is no good state to keep";
+    throw SimulationError(message.str(), false);
+  }
+  const std::size_t step = steps_;
+  message << ", in step " << step << " (t = " << time_s_ - last_dt_s_ << " s to " << time_s_
+          << " s)";
+  if (!roll_back()) throw SimulationError(message.str(), false);
+  message << "; the simulation is back at the last good state, t = " << time_s_ << " s (step "
+          << steps_ << ")";
+  throw SimulationError(message.str(), true);
+}
+
+// Going back to the last good state. A copy of the state at the start of every step would cost
+// a pass over 10 fields of 8 bytes per particle, every step, plus what the effects hold. The
+// step is deterministic instead (the same for any number of threads), so a snapshot taken every
+// kSnapshotInterval steps and the time steps since are enough: restoring the snapshot and
+// replaying all but the failed step lands bit for bit on the state that step started from. The
+// snapshot costs one such pass every kSnapshotInterval steps (about 0.1 % of a step, and 80
+// bytes per particle of memory); the replay, at most kSnapshotInterval steps, only after a
+// breakdown.
+bool Simulation::roll_back() {
+  if (!has_snapshot_ || steps_since_snapshot_.empty()) return false;
+  const std::vector<double> replay(steps_since_snapshot_.begin(), steps_since_snapshot_.end() - 1);
+  replaying_ = true;
+  try {
+    StateReader in(snapshot_.bytes(), "the snapshot kept for the rollback");
+    load_state(in);
+    steps_since_snapshot_.clear();
+    for (const double dt : replay) advance(dt);
+    refresh();
+  } catch (...) {
+    replaying_ = false;
+    throw;
+  }
+  replaying_ = false;
+  return true;
+}
+
+void Simulation::keep_snapshot() {
+  if (replaying_ || (has_snapshot_ && steps_ < snapshot_step_ + kSnapshotInterval)) return;
+  ScopedTimer timer(phase_times_.checks);
+  snapshot_.clear();
+  // Room for the fields and a margin for what grows between snapshots, allocated at once: grown
+  // piecemeal, the buffer would end up to twice the size it needs.
+  constexpr std::size_t kFields = 10;
+  const std::size_t particles = particles_.fluid_count() + particles_.fluid_count() / 16;
+  snapshot_.reserve(kFields * sizeof(double) * particles + 4096);
+  write_state(snapshot_);
+  has_snapshot_ = true;
+  snapshot_step_ = steps_;
+  steps_since_snapshot_.clear();
+}
+
+void Simulation::save_state(StateWriter& out) {
+  refresh();
+  write_state(out);
+}
+
+void Simulation::write_state(StateWriter& out) const {
+  const std::size_t n = particles_.fluid_count();
+  const auto& p = particles_;
+  out.text(kStateLabel);
+  out.number(time_s_);
+  for (const std::size_t c :
+       {steps_, particle_steps_, wall_reflections_, last_sort_step_, sorted_count_}) {
+    out.count(c);
+  }
+  out.number(kernel_.influence_radius());
+  out.number(ledger_.initial_m3);
+  out.number(ledger_.added_m3);
+  out.number(ledger_.removed_m3);
+  for (const Field field : {&p.x, &p.y, &p.u, &p.v, &p.volume, &p.depth, &p.area, &p.initial_area,
+                            &p.bed, &p.number_density}) {
+    out.numbers(std::span<const double>(field->data(), n));
+  }
+  out.count(effects_.size());
+  StateWriter effect_state;
+  for (const auto& effect : effects_) {
+    out.text(effect->name());
+    effect_state.clear();
+    effect->save_state(effect_state);
+    out.bytes(effect_state.bytes());
+  }
+}
+
+void Simulation::restore_state(StateReader& in) {
+  load_state(in);
+  // A record can be whole and still hold a broken state (one written by hand, or by a build
+  // without these checks): refused here rather than found a step later.
+  const auto& p = particles_;
+  const std::size_t n = p.fluid_count();
+  if (!all_finite({&p.x, &p.y, &p.u, &p.v, &p.volume, &p.depth, &p.area}, n)) {
+    throw StateError(in.what() + " holds non-finite particle values");
+  }
+  // A fresh snapshot: a breakdown in the first steps after the restore goes back to here.
+  has_snapshot_ = false;
+  keep_snapshot();
+}
+
+void Simulation::load_state(StateReader& in) {
+  in.expect(kStateLabel);
+  const double time_s = in.number();
+  std::array<std::uint64_t, 5> counts{};
+  for (auto& c : counts) c = in.count();
+  const double radius = in.number();
+  VolumeLedger ledger;
+  ledger.initial_m3 = in.number();
+  ledger.added_m3 = in.number();
+  ledger.removed_m3 = in.number();
+  std::array<std::vector<double>, 10> fields;
+  for (auto& f : fields) f = in.numbers();
+  const std::size_t n = fields[0].size();
+  for (const auto& f : fields) {
+    if (f.size() != n)
+      throw StateError(in.what() + " is damaged: particle fields differ in length");
+  }
+  if (!(radius > 0.0) || !std::isfinite(radius)) {
+    throw StateError(in.what() + " is damaged: influence radius " + number(radius));
+  }
+  if (in.count() != effects_.size()) {
+    throw StateError(in.what() + " was saved with another set of effects than this scene's");
+  }
+  std::vector<std::span<const std::byte>> effect_states;
+  for (const auto& effect : effects_) {
+    const std::string name = in.text();
+    if (name != effect->name()) {
+      throw StateError(in.what() + " holds the state of effect '" + name +
+                       "' where this scene has '" + std::string(effect->name()) + "'");
+    }
+    effect_states.push_back(in.bytes());
+  }
+
+  particles::SweParticles p;
+  const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density] = fields;
+  for (std::size_t i = 0; i < n; ++i) {
+    p.add_fluid(x[i], y[i], u[i], v[i], volume[i], depth[i], initial_area[i], bed[i]);
+  }
+  p.area = area;
+  p.number_density = density;
+  particles_ = std::move(p);
+  time_s_ = time_s;
+  steps_ = counts[0];
+  particle_steps_ = counts[1];
+  wall_reflections_ = counts[2];
+  last_sort_step_ = counts[3];
+  sorted_count_ = counts[4];
+  kernel_ = Kernel(radius);
+  ledger_ = ledger;
+  for (std::size_t k = 0; k < effects_.size(); ++k) {
+    StateReader effect_in(effect_states[k],
+                          in.what() + ", effect '" + std::string(effects_[k]->name()) + "'");
+    effects_[k]->restore_state(effect_in);
+    effect_in.expect_end();
+  }
+  rebuild_neighborhood();
+  fluid_limit_ = swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
+  fresh_ = true;
+  set_changed_ = false;
+  positions_checked_ = true;
+}
+
+// update_fields() without the radius, the sort and the sums: the ghosts and neighbour list of
+// a restored state, which are functions of the saved positions, fields and radius alone.
+void Simulation::rebuild_neighborhood() {
+  particles_.drop_ghosts();
+  if (particles_.fluid_count() == 0) return;
+  {
+    ScopedTimer timer(phase_times_.walls);
+    walls_.add_ghosts(particles_, kernel_.support());
+  }
+  {
+    ScopedTimer timer(phase_times_.neighbors);
+    const auto coords = positions(particles_, particles_.size());
+    cells_.build(coords, kernel_.support(), kCellSubdivisions);
+    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
+                           neighbor_list_);
+  }
+  boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
 }
 
 VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth_m,
@@ -141,6 +473,9 @@ VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth
   }
   report.iterations = std::min(report.iterations, max_iterations);
   fresh_ = false;
+  set_changed_ = true;
+  positions_checked_ = false;
+  has_snapshot_ = false;  // the volumes changed: the next refresh takes a new one
   ledger_.initial_m3 = particles_.total_fluid_volume();
   report.volume_after_m3 = ledger_.initial_m3;
   return report;
@@ -183,24 +518,26 @@ void Simulation::update_fields(bool sort) {
 
 double Simulation::stable_time_step() {
   refresh();
-  TimeStepLimit limit = swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
+  TimeStepLimit limit = fluid_limit_;
   const double effects_limit = effects_time_step_limit();
   if (effects_limit < limit.dt_s) {
     limit.dt_s = effects_limit;
   } else if (particles_.fluid_count() == 0) {
     throw SimulationError(
-        "no water is left and no effect adds any at t = " + std::to_string(time_s_) + " s");
+        "no water is left and no effect adds any at t = " + std::to_string(time_s_) + " s", true);
   }
   if (particles_.fluid_count() == 0) return limit.dt_s;  // dry: only the effects limit the step
   if (!(limit.dt_s >= settings_.min_time_step_s) || !std::isfinite(limit.dt_s)) {
     const std::size_t i = limit.particle;
     std::ostringstream msg;
-    msg << "the time step collapsed to " << limit.dt_s << " s (floor " << settings_.min_time_step_s
-        << " s) at t = " << time_s_ << " s, step " << steps_ << ", limited by particle " << i
-        << " at (" << particles_.x[i] << ", " << particles_.y[i] << ") m with depth "
-        << particles_.depth[i] << " m and velocity (" << particles_.u[i] << ", " << particles_.v[i]
-        << ") m/s";
-    throw SimulationError(msg.str());
+    msg << std::setprecision(9) << "the time step collapsed to " << limit.dt_s << " s (floor "
+        << settings_.min_time_step_s << " s) for step " << steps_ + 1 << " at t = " << time_s_
+        << " s, limited by particle " << i << " at " << pair(particles_.x[i], particles_.y[i])
+        << " m with depth " << particles_.depth[i]
+        << " m and velocity (u, v) = " << pair(particles_.u[i], particles_.v[i])
+        << " m/s; the simulation stays at the last good state, t = " << time_s_ << " s (step "
+        << steps_ << ")";
+    throw SimulationError(msg.str(), true);
   }
   return limit.dt_s;
 }
@@ -250,16 +587,27 @@ void Simulation::advance(double dt_s) {
     });
   }
   run_effects(Stage::velocity, dt_s);
+  bool moved_finite = true;
   {
     ScopedTimer timer(phase_times_.integrate);
     old_x_.resize(n);
     old_y_.resize(n);
-    parallel_for(n, [&](std::size_t i) {
-      old_x_[i] = particles_.x[i];
-      old_y_[i] = particles_.y[i];
-      particles_.x[i] += dt_s * particles_.u[i];
-      particles_.y[i] += dt_s * particles_.v[i];
+    // The move also tells whether every new position is finite (refresh() says why that is
+    // enough): a flag per chunk, ORed without a branch.
+    constexpr double kLargest = std::numeric_limits<double>::max();
+    std::array<std::uint8_t, reduction_chunks> broken{};
+    parallel_chunks(n, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+      bool bad = false;
+      for (std::size_t i = begin; i < end; ++i) {
+        old_x_[i] = particles_.x[i];
+        old_y_[i] = particles_.y[i];
+        particles_.x[i] += dt_s * particles_.u[i];
+        particles_.y[i] += dt_s * particles_.v[i];
+        bad |= !(std::abs(particles_.x[i]) <= kLargest) | !(std::abs(particles_.y[i]) <= kLargest);
+      }
+      broken[chunk] = bad;
     });
+    moved_finite = std::none_of(broken.begin(), broken.end(), [](std::uint8_t b) { return b; });
   }
   {
     ScopedTimer timer(phase_times_.walls);
@@ -267,7 +615,18 @@ void Simulation::advance(double dt_s) {
   }
   particles_.drop_ghosts();
   fresh_ = false;
+  const double added_m3 = ledger_.added_m3, removed_m3 = ledger_.removed_m3;
   run_effects(Stage::topology, dt_s);
+  // Effects that add or remove particles book the volume, so an unchanged count and ledger
+  // mean the same particles in the same order.
+  numbering_kept_ = particles_.fluid_count() == n && ledger_.added_m3 == added_m3 &&
+                    ledger_.removed_m3 == removed_m3;
+  set_changed_ = set_changed_ || !numbering_kept_;
+  // A reflection at a wall keeps a finite position finite.
+  positions_checked_ = moved_finite && numbering_kept_;
+  moved_count_ = n;
+  last_dt_s_ = dt_s;
+  steps_since_snapshot_.push_back(dt_s);
   time_s_ += dt_s;
   ++steps_;
   particle_steps_ += n;

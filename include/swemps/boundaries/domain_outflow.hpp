@@ -20,6 +20,8 @@ class DomainOutflow final : public swe::Effect {
   swe::Stage stage() const override { return swe::Stage::topology; }
   void apply(swe::StepContext& context) override;
   std::string report() const override;
+  void save_state(swe::StateWriter& out) const override;
+  void restore_state(swe::StateReader& in) override;
 
   std::size_t removed_particles() const { return removed_; }
 

@@ -71,6 +71,8 @@ class InflowLine final : public swe::Effect {
   swe::Stage stage() const override { return swe::Stage::topology; }
   void apply(swe::StepContext& context) override;
   std::string report() const override;
+  void save_state(swe::StateWriter& out) const override;
+  void restore_state(swe::StateReader& in) override;
   // eq 13 for a row at the hydrograph's peak discharge: the step never skips past a rise
   // of the hydrograph, and a domain that starts dry still gets steps of a sensible size.
   double time_step_limit(const swe::Settings& settings, double time_s) const override;

@@ -42,6 +42,8 @@ class OutflowLines final : public swe::Effect {
   // (an effect before this one removed particles).
   void apply(swe::StepContext& context) override;
   std::string report() const override;
+  void save_state(swe::StateWriter& out) const override;
+  void restore_state(swe::StateReader& in) override;
 
   std::size_t removed_particles() const { return removed_; }
   double volume_removed() const { return removed_m3_; }  // m^3, as booked in the ledger

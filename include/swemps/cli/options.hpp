@@ -20,6 +20,11 @@ struct Options {
   int threads = 0;  // 0: OpenMP's default; study: threads per run, 0: cores / jobs
   int jobs = 0;     // study: runs at once; 0: the study file's, or one per core
   Verbosity verbosity = Verbosity::normal;
+  // run, shallow water: continue the run that wrote this checkpoint (--restart)
+  std::optional<std::filesystem::path> restart;
+  // run, shallow water: write a checkpoint every this many output times; 0: only when the
+  // run stops early (a signal, a breakdown)
+  int checkpoint_every = 0;
 };
 
 class UsageError : public std::runtime_error {

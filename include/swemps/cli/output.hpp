@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,7 @@
 #include "swemps/particles/swe_particles.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
+#include "swemps/swe/state_record.hpp"
 
 namespace swemps::cli {
 
@@ -34,12 +36,27 @@ void writing(Call&& call) {
   }
 }
 
-// Where a run comes from, for the files' metadata.
+// Where a run comes from, for the files' metadata, and how it is to be run.
 struct RunContext {
   std::filesystem::path scenario_file;
   std::string command_line;
   bool progress = true;  // draw the progress bar (not with -q)
+  // Shallow water: write checkpoints (checkpoint_path()) when the run stops early and, if
+  // checkpoint_every > 0, every checkpoint_every output times; go on from `restart`. Off for
+  // the runs of compare and study, whose files are not meant to be continued.
+  bool checkpoints = false;
+  int checkpoint_every = 0;
+  std::optional<std::filesystem::path> restart = std::nullopt;
 };
+
+// The context of `swe-mps run` for the scene: checkpoints on, and the options' restart and
+// checkpoint interval. Throws UsageError for checkpoint options on a Navier-Stokes scene.
+RunContext run_context(const Options& options, const std::string& command_line,
+                       const scenario::Scenario& scene);
+
+// Where a run writing `output` keeps its checkpoint: the same path with the extension
+// .checkpoint ("flood.nc" -> "flood.checkpoint").
+std::filesystem::path checkpoint_path(const std::filesystem::path& output);
 
 // Gridded fields of one state on the output grid: ny * nx values each, x fastest.
 struct GriddedState {
@@ -53,9 +70,13 @@ class MapOutput {
   // `particles`: whether the SWE particles are written with the maps. `depth_long_name` says
   // how depth was measured (empty: the shallow-water summation); `title_note` is added to the
   // file's title (the model).
+  // With `resume`, goes on writing <output>.partial after that position (a run restarted from
+  // a checkpoint); throws io::CheckpointError if that file cannot be opened or does not match
+  // the checkpoint: the checkpoint cannot be used without the maps written before it.
   MapOutput(const scenario::Scenario& scene, const scenario::Terrain& terrain,
             const swe::RegularGrid& grid, const RunContext& context, bool particles,
-            const std::string& depth_long_name, const std::string& title_note);
+            const std::string& depth_long_name, const std::string& title_note,
+            const std::optional<io::WriterPosition>& resume = std::nullopt);
 
   // The maps at an output time: depth everywhere; water surface and velocity only where the
   // cell is wetter than the scene's wet depth (over a thinner film they are noise).
@@ -67,9 +88,20 @@ class MapOutput {
   void sample(double time_s, const GriddedState& state, std::span<const io::GaugeSample> gauges,
               const io::BalanceSample& balance);
 
-  void finish();  // summary maps, then the file gets its final name
+  void finish();  // summary maps and run_status "complete", then the file gets its final name
+  // For a run that stops early: the summary maps of the samples so far, the status
+  // ("interrupted", "breakdown") and its message; the file is closed and stays <path>.partial.
+  void close_stopped(const std::string& status, const std::string& message);
+  void flush();  // what is written so far onto the disk (before a checkpoint)
+
+  // Where the file stands and the flood statistics so far, for a checkpoint; restore_state()
+  // after construction with the position that save_state() wrote first.
+  void save_state(swe::StateWriter& out) const;
+  static io::WriterPosition read_position(swe::StateReader& in);
+  void restore_statistics(swe::StateReader& in);
 
   const std::filesystem::path& path() const { return writer_->path(); }
+  const std::filesystem::path& partial_path() const { return writer_->partial_path(); }
   double wet_depth_m() const { return wet_depth_m_; }
 
  private:

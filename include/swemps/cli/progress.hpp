@@ -14,12 +14,16 @@ namespace swemps::cli {
 class Progress {
  public:
   Progress(double end_time_s, bool enabled, std::FILE* stream = stderr);
+  // A run restarted at time_s after `steps` steps: rates and time left count from there.
+  void resume_from(double time_s, std::size_t steps);
   void update(double time_s, std::size_t steps, std::size_t particles);
   void finish();  // ends the terminal line
 
  private:
   using Clock = std::chrono::steady_clock;
   double end_time_s_;
+  double start_fraction_ = 0.0;
+  std::size_t start_steps_ = 0;
   bool enabled_, terminal_;
   std::FILE* stream_;
   Clock::time_point start_, last_draw_;

@@ -3,6 +3,7 @@
 // output, with progress and a summary), `compare` (compare_command.hpp) and `study`
 // (study_command.hpp).
 
+#include <stdexcept>
 #include <string>
 
 #include "swemps/cli/options.hpp"
@@ -16,15 +17,30 @@ enum ExitStatus : int {
   exit_input = 2,
   exit_breakdown = 3,
   exit_output = 4,
+  // Stopped by a signal after writing what the run had: 128 + the signal's number, as a shell
+  // reports a process the signal ended (130 for SIGINT, 143 for SIGTERM).
+  exit_signal = 128,
 };
 
 // Runs options.command on the scene; throws scenario::ScenarioError, swe::SimulationError,
-// ns::SimulationError, OutputError.
+// ns::SimulationError, OutputError, RunStopped, io::CheckpointError, UsageError.
 void run(const Options& options, const std::string& command_line);
 
 class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A run stopped by SIGINT or SIGTERM, after it wrote the state it stopped at and closed its
+// files; what() says what was written and how to go on.
+class RunStopped : public std::runtime_error {
+ public:
+  RunStopped(int signal_number, const std::string& message)
+      : std::runtime_error(message), signal_number_(signal_number) {}
+  int signal_number() const { return signal_number_; }
+
+ private:
+  int signal_number_;
 };
 
 }  // namespace swemps::cli

@@ -10,7 +10,9 @@
 // - optionally the particles themselves, as CF contiguous ragged arrays.
 // With a CRS the grid is georeferenced through a `crs` grid-mapping variable. The file is
 // written under a temporary name (<path>.partial) and renamed to <path> only by finish(),
-// so a run that crashes never leaves a file that looks complete.
+// so a run that crashes never leaves a file that looks complete. A run that stops early
+// closes it with close_partial() instead, and a run restarted from a checkpoint goes on
+// writing it (the resuming constructor).
 
 #include <cstddef>
 #include <filesystem>
@@ -78,6 +80,13 @@ struct BalanceSample {
   double relative_error = 0.0;
 };
 
+// How much of a file has been written: where a resumed writer goes on.
+struct WriterPosition {
+  std::size_t records = 0;           // map times
+  std::size_t series_records = 0;    // series times
+  std::size_t particle_samples = 0;  // particles over all map times
+};
+
 namespace detail {
 // Dimension and variable ids of an open file; -1 where absent.
 struct NetcdfIds {
@@ -96,6 +105,14 @@ class NetcdfWriter {
   // gauges with empty or repeated names or non-finite positions; std::runtime_error naming
   // the file and netCDF's message if the file cannot be written.
   NetcdfWriter(std::filesystem::path path, const Layout& layout, const RunMetadata& meta);
+  // Opens <path>.partial, left by an earlier writer of the same layout that stopped at or after
+  // `position`, to go on writing after `position`: records past it (written after a
+  // checkpoint, before a crash) are overwritten. The command line is added to the history
+  // attribute. Throws std::runtime_error naming the file if it cannot be opened, or if its
+  // grid, gauges or particle layout differ from `layout` or it holds fewer records than
+  // `position`.
+  NetcdfWriter(std::filesystem::path path, const Layout& layout, const RunMetadata& meta,
+               const WriterPosition& position);
   ~NetcdfWriter();  // closes the file if still open; leaves .partial in place
   NetcdfWriter(const NetcdfWriter&) = delete;
   NetcdfWriter& operator=(const NetcdfWriter&) = delete;
@@ -117,13 +134,27 @@ class NetcdfWriter {
   // the grid's cells.
   void write_summary(const maps::FloodStatistics& stats);
 
+  // The global attributes run_status ("complete", "interrupted", "breakdown") and, unless
+  // empty, run_status_message; rewritten by each call.
+  void write_status(const std::string& status, const std::string& message);
+
+  // Hands what was written so far to the operating system, so that the file on disk holds it
+  // even if the process is killed before closing it (done before each checkpoint).
+  void flush();
+
   // Closes the file and renames <path>.partial to <path>. Variables written once that
   // were never written are absent from the file rather than full of fill values.
   void finish();
+  // Closes the file and leaves it at <path>.partial: a run that stopped before its end, whose
+  // file is readable but incomplete, and may be resumed.
+  void close_partial();
 
   const std::filesystem::path& path() const { return path_; }
+  const std::filesystem::path& partial_path() const { return partial_path_; }
   std::size_t records() const { return records_; }
   std::size_t series_records() const { return series_records_; }
+  bool bed_written() const { return bed_written_; }
+  WriterPosition position() const { return {records_, series_records_, particle_samples_}; }
 
  private:
   void require_open(const char* caller) const;

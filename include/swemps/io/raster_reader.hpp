@@ -4,7 +4,9 @@
 // Rasters in longitude/latitude are warped (bilinear) to the scene's CRS here, once, so that
 // nothing downstream ever meets degrees.
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "swemps/terrain/gridded_field.hpp"
@@ -20,9 +22,17 @@ struct RasterRequest {
   std::string purpose = "raster";       // what the raster is for ("bed raster"), in messages
   std::string crs_setting = "bed.crs";  // the scene key that sets target_crs, in messages
   int band = 1;                         // 1-based, as in GDAL
+  // The memory reading may take, in bytes (the machine's); 0: no limit. A raster whose cells
+  // would need more (kRasterBytesPerCell each) is refused before any of them is read.
+  std::uint64_t memory_limit_bytes = 0;
 };
 
+// What reading costs per cell of the raster: the values as stored and as returned, and a
+// warped copy when the raster is warped, with room to spare.
+inline constexpr double kRasterBytesPerCell = 32.0;
+
 // Reads one band into a north-up GriddedField named after the request's purpose:
+//  - a raster too large for request.memory_limit_bytes is an error, before it is read;
 //  - a projected CRS in metres is used as it is, or warped when target_crs names another;
 //  - a geographic CRS (longitude/latitude) is warped to target_crs on GDAL's suggested grid
 //    (square cells, bilinear); cells outside the source's footprint become nodata. Without a
@@ -39,6 +49,13 @@ terrain::GriddedField read_raster(const RasterRequest& request);
 // Writes a field as a single-band, deflate-compressed Float64 GeoTIFF with NaN as nodata (for
 // fixtures and tools). Throws std::runtime_error naming the file if it cannot.
 void write_geotiff(const terrain::GriddedField& field, const std::filesystem::path& path);
+
+// A GDAL dataset name that wraps a file, DRIVER:"file"[:rest] such as NETCDF:"dem.nc":elevation,
+// in its parts (rest ":elevation"); nullopt for a plain file name.
+struct WrappedDataset {
+  std::string driver, file, rest;
+};
+std::optional<WrappedDataset> split_dataset_name(const std::string& name);
 
 // The WGS 84 / UTM zone holding a point, as "EPSG:326zz" (north) or "EPSG:327zz" (south):
 // standard 6-degree zones, without the Norway and Svalbard exceptions.

@@ -41,6 +41,13 @@ class FloodStatistics {
   std::span<const double> arrival_time() const { return arrival_time_; }                // s
   std::span<const double> inundation_duration() const { return inundation_duration_; }  // s
 
+  // The five maps in the order above, and restore() of them: a run restarted from a
+  // checkpoint goes on with the statistics of the samples before it. restore() takes the maps,
+  // the sample count and last_time() as they were; throws std::invalid_argument (leaving the
+  // statistics unchanged) unless there are five maps of cells() values.
+  std::vector<std::span<const double>> maps() const;
+  void restore(std::size_t samples, double last_time_s, std::vector<std::vector<double>> maps);
+
   std::size_t cells() const { return max_depth_.size(); }
   double wet_depth() const { return wet_depth_m_; }
   std::size_t samples() const { return samples_; }

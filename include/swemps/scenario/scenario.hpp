@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -155,6 +156,7 @@ struct Scenario {
   double end_time_s = 0.0;
   swe::Settings numerics;
   std::optional<double> eddy_viscosity_m2_s;  // numerics.eddy_viscosity; absent: none
+  std::optional<double> shock_viscosity;      // numerics.shock_viscosity (alpha); absent: none
   // Particles leaving it are removed and their volume booked. Left out of the file with a
   // raster bed (domain_from_bed): then all zero here, and build takes the raster's extent.
   Rectangle domain;
@@ -188,6 +190,11 @@ class ScenarioError : public std::runtime_error {
  private:
   std::string json_path_, found_, expected_, document_;
 };
+
+// `text` fit to be one line of a message on a terminal: control characters (a line break in a
+// key or a file name) are written as escapes such as \n or \x1b, and bytes that are not UTF-8
+// as \xff, so that a message stays one line and cannot drive the terminal.
+std::string printable_line(std::string_view text);
 
 // Reads and validates a scenario file. Relative paths inside it are taken relative to the
 // file's folder. Throws ScenarioError (file unreadable, syntax, unknown key, bad value).

@@ -64,6 +64,8 @@ class ParticleSplitting final : public swe::Effect {
   swe::Stage stage() const override { return swe::Stage::resolution; }
   void apply(swe::StepContext& context) override;
   std::string report() const override;
+  void save_state(swe::StateWriter& out) const override;
+  void restore_state(swe::StateReader& in) override;
 
   std::size_t splits() const { return splits_; }
   std::size_t refused_at_walls() const { return refused_at_walls_; }

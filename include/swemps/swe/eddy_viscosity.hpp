@@ -22,6 +22,8 @@ class EddyViscosity final : public Effect {
   Stage stage() const override { return Stage::forces; }
   void apply(StepContext& context) override;
   double time_step_limit(const Settings& settings, double time_s) const override;
+  void save_state(StateWriter& out) const override;
+  void restore_state(StateReader& in) override;
   double viscosity() const { return viscosity_; }
 
  private:

@@ -13,6 +13,7 @@
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/particles/swe_particles.hpp"
 #include "swemps/swe/settings.hpp"
+#include "swemps/swe/state_record.hpp"
 
 namespace swemps::swe {
 
@@ -61,6 +62,12 @@ class Effect {
   }
   // One line for the closing summary (what the effect did over the run); empty for none.
   virtual std::string report() const { return {}; }
+  // What the effect carries from one step to the next (an inflow's progress, a time-step
+  // limit found in the last step, the counts of its report), for checkpoints and for the
+  // rollback after a breakdown: after restore_state() of what save_state() wrote, the effect
+  // must make exactly the steps it would have made. An effect without such state keeps these.
+  virtual void save_state(StateWriter& /*out*/) const {}
+  virtual void restore_state(StateReader& /*in*/) {}
 };
 
 }  // namespace swemps::swe

@@ -20,6 +20,13 @@
 //     effects (semi-implicit friction acts on the updated velocity).
 //  5. x += dt u; particles whose path crossed a wall are reflected back.
 //  6. ghosts dropped; topology-stage effects add or remove particles.
+//
+// Failing well: the state a step leaves is checked for non-finite values as it is refreshed,
+// before anything reads it, and a step below Settings::min_time_step_s is refused. Either way
+// SimulationError is thrown with the simulation at the last good state, the state at the end
+// of the last step whose values were all finite, so that the caller can still write it (see
+// refresh() for how). save_state() and restore_state() carry everything the next step depends
+// on, so a restored simulation continues bit for bit (checkpoints, io/checkpoint.hpp).
 
 #include <algorithm>
 #include <chrono>
@@ -34,17 +41,29 @@
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/swe/effect.hpp"
 #include "swemps/swe/operators.hpp"
+#include "swemps/swe/state_record.hpp"
 
 namespace swemps::swe {
 
 // The run cannot go on: non-finite values or a collapsing time step.
 class SimulationError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit SimulationError(const std::string& message, bool at_last_good_state = false)
+      : std::runtime_error(message), at_last_good_state_(at_last_good_state) {}
+  // Whether the simulation that threw holds the last good state, the state at the end of the
+  // last step whose values were all finite (fresh: refresh() has nothing left to do). False
+  // only when there is none: the starting state itself was broken.
+  bool at_last_good_state() const { return at_last_good_state_; }
+
+ private:
+  bool at_last_good_state_;
 };
 
 struct PhaseTimes {  // wall-clock seconds spent in each part of the step
   double sort = 0.0, neighbors = 0.0, depth = 0.0, gradient = 0.0, integrate = 0.0, walls = 0.0;
+  // Checks for non-finite values beyond those the step makes in passing, and the snapshots
+  // kept for a rollback.
+  double checks = 0.0;
 };
 
 // What Simulation::balance_volumes() did.
@@ -66,7 +85,9 @@ class Simulation {
   Simulation(particles::SweParticles fluid, Settings settings, boundaries::GhostWalls walls,
              std::vector<std::unique_ptr<Effect>> effects);
 
-  // Brings neighbour list, ghosts, depth and area up to date for the current positions.
+  // Brings neighbour list, ghosts, depth and area up to date for the current positions, and
+  // checks the state for non-finite values. Throws SimulationError for a broken state, after
+  // going back to the last good one.
   void refresh();
   // Lake at rest (docs/method.md, "Water at rest over a bed"): rescales the fluid volumes so
   // that the eq 7 depth at each particle equals target_depth_m[i] (indexed like particles()
@@ -79,16 +100,21 @@ class Simulation {
   // eq 13 on current fields; throws SimulationError if the step is below the floor or a
   // value is non-finite.
   double stable_time_step();
-  // Advances by dt (at most stable_time_step()).
+  // Advances by dt (at most stable_time_step()). The state it leaves is checked by the next
+  // refresh(), which every reader of the state calls first.
   void advance(double dt_s);
-  // Steps at the stable time step until time() reaches target_s exactly (the last step is
-  // shortened), calling after_step() after each step.
+  // Whether time() has reached target_s, to the round-off of the running sum of dt.
+  bool reached(double target_s) const {
+    return !(target_s - time_s_ > 1e-12 * std::max(1.0, std::abs(target_s)));
+  }
+  // One step at the stable time step, shortened so as to land on target_s exactly.
+  void step_towards(double target_s) { advance(std::min(stable_time_step(), target_s - time_s_)); }
+  // Steps until time() reaches target_s exactly (the last step is shortened), calling
+  // after_step() after each step.
   template <class AfterStep>
   void advance_to(double target_s, AfterStep&& after_step) {
-    // The tolerance absorbs round-off in the running sum of dt.
-    const double tolerance = 1e-12 * std::max(1.0, std::abs(target_s));
-    while (target_s - time_s_ > tolerance) {
-      advance(std::min(stable_time_step(), target_s - time_s_));
+    while (!reached(target_s)) {
+      step_towards(target_s);
       after_step();
     }
   }
@@ -112,9 +138,33 @@ class Simulation {
   const PhaseTimes& phase_times() const { return phase_times_; }
   std::vector<EffectTime> effect_times() const;
 
+  // Everything the next step depends on: the fluid particles with all their fields, time,
+  // step count, the influence radius (eq 9 takes the next one from these areas), when the
+  // particles were last sorted, the volume ledger and each effect's own state. Refreshes
+  // first, so the record is of a fresh state (what the next step starts from).
+  void save_state(StateWriter& out);
+  // Replaces the state by one save_state() wrote for a simulation built from the same scene,
+  // and rebuilds the ghosts and neighbour list without summing anything anew, so that the
+  // next steps are bit for bit those the saved simulation would have made. Throws StateError
+  // for a record that does not fit (other effects, damaged or non-finite fields); the
+  // simulation is then not fit to run on.
+  void restore_state(StateReader& in);
+
  private:
   // refresh() without the resolution stage; `sort`: sort the particles by cell first.
   void update_fields(bool sort);
+  // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
+  void check_moved_positions();
+  void check_added_particles(const char* added_by);
+  void check_refreshed_fields();
+  [[noreturn]] void break_down(const std::string& what_happened);
+  // Back to the last good state: the snapshot restored, then the steps since replayed. False
+  // when there is no snapshot.
+  bool roll_back();
+  void keep_snapshot();
+  void write_state(StateWriter& out) const;
+  void load_state(StateReader& in);
+  void rebuild_neighborhood();
   bool sorting_due() const;
   void sort_by_cell();
   double effects_time_step_limit() const;
@@ -136,6 +186,20 @@ class Simulation {
   std::size_t steps_ = 0, particle_steps_ = 0, wall_reflections_ = 0;
   std::size_t last_sort_step_ = 0, sorted_count_ = 0;  // when the particles were last sorted
   bool fresh_ = false;
+  // Since the last step: whether its topology stage kept the particles' numbering (nothing
+  // added or removed), so that old_x_, old_y_ and the accelerations still name them; whether
+  // the particle set changed (then velocities are checked as well as positions).
+  bool numbering_kept_ = true, set_changed_ = true;
+  bool positions_checked_ = false;     // the move loop found every position of the set finite
+  TimeStepLimit fluid_limit_{0.0, 0};  // eq 13 on the fields of the last refresh
+  std::size_t moved_count_ = 0;        // fluid particles the last step moved
+  double last_dt_s_ = 0.0;
+  // The rollback after a breakdown: a saved state, taken every few steps, and the time step of
+  // every step since.
+  StateWriter snapshot_;  // cleared and refilled: its memory is allocated once
+  bool has_snapshot_ = false, replaying_ = false;
+  std::size_t snapshot_step_ = 0;
+  std::vector<double> steps_since_snapshot_;
 };
 
 }  // namespace swemps::swe

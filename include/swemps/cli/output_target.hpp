@@ -1,0 +1,19 @@
+#pragma once
+// Whether a run can write its output file, found out before the run starts: a folder that is
+// missing or is a file, a target that is a folder, or a folder that refuses new files would
+// otherwise be reported only when the first map is written, after the rasters are read and the
+// particles seeded, or (a target that is a folder) after the whole run, when the finished file
+// is renamed into place.
+
+#include <filesystem>
+
+namespace swemps::cli {
+
+// Throws OutputError, one line naming `file` and what is in the way. Missing folders are not
+// created: a mistyped folder should be reported, not made. The folder is tested by creating
+// the file's <file>.partial, which the writer creates first anyway, and removing it again
+// unless it was there before; so a read-only file system or a folder without write permission
+// is found out even for a user (root) whom permission bits do not stop.
+void check_output_target(const std::filesystem::path& file);
+
+}  // namespace swemps::cli

@@ -1,0 +1,628 @@
+// Bad input through the real swe-mps executable, one table row per mistake a user can make:
+// broken JSON, wrong types, missing keys, bad spacings and times, crossing polygons, water
+// outside the domain, rasters that are missing, unreadable, not rasters, too large, in
+// longitude/latitude or with nodata where the water starts, output paths that cannot be
+// written, and scenes too large for the machine's memory. Each must end the process normally
+// (no signal, no core dump) with the status of its kind and exactly one line on stderr that
+// names the problem and where it is (JSON path or file); the scene layer's own tests
+// (tests/scenario) check the parsing in detail, these check what a user sees.
+//
+// With SWEMPS_BAD_INPUT_TABLE=FILE the test also writes the table of docs/robustness-bad-input.md
+// there: each input with the message it printed, verbatim, and its status.
+
+#include <fcntl.h>
+#include <gdal_priv.h>
+#include <grp.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../support/temp_dir.hpp"
+#include "../support/terrain_fixtures.hpp"
+#include "swemps/io/raster_reader.hpp"
+#include "swemps/terrain/gridded_field.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+using nlohmann::json;
+using swemps::terrain::GriddedField;
+
+constexpr int kInput = 2, kOutput = 4;  // swemps::cli::ExitStatus
+constexpr uid_t kNobody = 65534;        // for the permission cases when the test runs as root
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------------------------
+// Running the executable
+
+struct Outcome {
+  bool exited = false;  // ended by exit(), not by a signal
+  int status = -1;      // its exit status
+  int signal = 0;       // the signal that ended it, if one did
+  bool core_dumped = false;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// How the child is started: with an address-space cap (bytes, 0: none), so that a scene that
+// tried to allocate what it asks for would fail rather than be refused; as user nobody, so that
+// a file without read permission is unreadable even when the tests run as root.
+struct Launch {
+  rlim_t address_space = 0;
+  bool as_nobody = false;
+};
+
+// fork and exec rather than popen through a shell, so that the status says whether the
+// process itself exited or was killed, and stdout and stderr are kept apart.
+Outcome run_cli(const std::vector<std::string>& args, const fs::path& dir, const Launch& launch) {
+  const fs::path out_file = dir / "stdout.txt", err_file = dir / "stderr.txt";
+  std::vector<std::string> argv_text{SWEMPS_CLI};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    // Only async-signal-safe calls between fork and exec.
+    const int out = open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (out < 0 || err < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0) _exit(125);
+    if (launch.address_space > 0) {
+      const rlimit cap{launch.address_space, launch.address_space};
+      if (setrlimit(RLIMIT_AS, &cap) != 0) _exit(125);
+    }
+    if (launch.as_nobody &&
+        (setgroups(0, nullptr) != 0 || setgid(kNobody) != 0 || setuid(kNobody) != 0)) {
+      _exit(126);
+    }
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  int raw = 0;
+  REQUIRE(waitpid(pid, &raw, 0) == pid);
+  Outcome o;
+  o.exited = WIFEXITED(raw);
+  o.status = o.exited ? WEXITSTATUS(raw) : -1;
+  o.signal = WIFSIGNALED(raw) ? WTERMSIG(raw) : 0;
+  o.core_dumped = WIFSIGNALED(raw) && WCOREDUMP(raw);
+  o.out = slurp(out_file);
+  o.err = slurp(err_file);
+  return o;
+}
+
+// A scene that runs: 0.5 m of water on [1, 4] x [1, 4] in a 10 m x 10 m domain. Each case
+// breaks one thing in it, by a JSON merge patch (RFC 7386: null removes a key) or as text.
+const json kGoodScene = json::parse(R"({
+  "end_time": 0.05,
+  "domain": {"x_min": 0, "x_max": 10, "y_min": 0, "y_max": 10},
+  "water": [{"rectangle": {"x_min": 1, "x_max": 4, "y_min": 1, "y_max": 4}, "depth": 0.5,
+             "spacing": 0.5}],
+  "output": {"path": "out.nc", "grid": {"spacing": 1}}
+})");
+
+// ---------------------------------------------------------------------------------------------
+// The files the broken scenes name, written into the test's folder
+
+// 10 x 10 cells of 1 m over [0, 10] x [0, 10], in local metres (no CRS).
+swemps::terrain::GridGeometry metre_grid() {
+  return swemps::testing::grid_geometry(10, 10, 0.0, 10.0, 1.0, 1.0);
+}
+
+// A field of `value`, with `hole` (NaN, nodata) in the cells whose centres lie in
+// [x0, x1] x [y0, y1].
+GriddedField field_with_hole(double value, double x0, double x1, double y0, double y1) {
+  const auto g = metre_grid();
+  std::vector<double> v;
+  for (std::size_t row = 0; row < g.rows; ++row) {
+    for (std::size_t col = 0; col < g.columns; ++col) {
+      const double x = g.cell_centre_x(col), y = g.cell_centre_y(row);
+      v.push_back(x >= x0 && x <= x1 && y >= y0 && y <= y1 ? kNaN : value);
+    }
+  }
+  return GriddedField(g, std::move(v));
+}
+
+void write_text(const fs::path& file, const std::string& text) {
+  std::ofstream(file, std::ios::binary) << text;
+}
+
+// A GeoTIFF with values but no geotransform: GDAL opens it, but it lies nowhere.
+void write_unplaced_geotiff(const fs::path& file) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GTiff");
+  REQUIRE(driver != nullptr);
+  GDALDatasetUniquePtr dataset(driver->Create(file.c_str(), 4, 4, 1, GDT_Float64, nullptr));
+  REQUIRE(dataset);
+  std::vector<double> zeros(16, 0.0);
+  REQUIRE(dataset->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 4, zeros.data(), 4, 4, GDT_Float64,
+                                              0, 0, nullptr) == CE_None);
+}
+
+void write_fixtures(const fs::path& dir) {
+  using swemps::io::write_geotiff;
+  write_geotiff(GriddedField(metre_grid(), std::vector<double>(100, 0.0)), dir / "dem.tif");
+  // Nodata under the water (which stands on [1, 4] x [1, 4]).
+  write_geotiff(field_with_hole(0.0, 2.0, 3.0, 2.0, 3.0), dir / "dem_hole.tif");
+  write_geotiff(field_with_hole(0.5, 0.0, 5.0, 0.0, 5.0), dir / "depth_hole.tif");
+  write_geotiff(field_with_hole(0.03, 7.0, 8.0, 7.0, 8.0), dir / "manning_hole.tif");
+  // Longitude/latitude: 0.001 degree cells west of Knoxville, in UTM zone 16.
+  write_geotiff(GriddedField(swemps::testing::grid_geometry(10, 10, -90.0, 35.0, 1e-3, 1e-3),
+                             std::vector<double>(100, 0.0), swemps::testing::wkt_of("EPSG:4326")),
+                dir / "geographic.tif");
+  write_unplaced_geotiff(dir / "unplaced.tif");
+  fs::copy_file(dir / "dem.tif", dir / "truncated.tif");
+  fs::resize_file(dir / "truncated.tif", fs::file_size(dir / "dem.tif") / 2);
+  fs::copy_file(dir / "dem.tif", dir / "unreadable.tif");
+  fs::permissions(dir / "unreadable.tif", fs::perms::none);
+  write_text(dir / "unreadable.json", kGoodScene.dump());
+  fs::permissions(dir / "unreadable.json", fs::perms::none);
+  write_text(dir / "not_a_raster.tif", "elevation,0\n");
+  fs::create_directory(dir / "a_folder.tif");
+  // A header promising 9e10 cells: 2.9 TB to read, refused before a cell is read.
+  write_text(dir / "huge.asc",
+             "ncols 300000\nnrows 300000\nxllcorner 0\nyllcorner 0\ncellsize 1\n0 0 0\n");
+  write_text(dir / "bad_hydrograph.csv", "time_s,discharge_m3_s\n0,10\n60,lots\n");
+  write_text(dir / "a_file", "not a folder\n");
+  // Where user nobody may write: the permission cases run as nobody when the tests run as root.
+  fs::create_directory(dir / "open");
+  fs::permissions(dir / "open", fs::perms::all);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The table
+
+std::string patched(const std::string& patch) {
+  json scene = kGoodScene;
+  scene.merge_patch(json::parse(patch));
+  return scene.dump();
+}
+
+// The water body replaced by `water` (an object's JSON text).
+std::string with_water(const std::string& water) {
+  return patched(R"({"water": [)" + water + "]}");
+}
+
+std::string with_bed_raster(const std::string& raster, const std::string& extra = "") {
+  return patched(R"({"bed": {"raster": ")" + raster + "\"" + extra + "}}");
+}
+
+enum class Needs { nothing, nobody, memory_cap };
+
+struct BadInput {
+  std::string input;              // what is wrong, as docs/robustness-bad-input.md lists it
+  std::string scene;              // the text of <dir>/scene.json; the run reads it
+  std::vector<std::string> args;  // after "run <dir>/scene.json -q"; {dir} is the folder
+  int status;
+  std::string where;    // the JSON path or file the message must name; {dir} as above
+  std::string problem;  // words of the message that say what is wrong
+  Needs needs = Needs::nothing;
+  std::string scene_file = "scene.json";  // what `run` is given, relative to the folder
+};
+
+std::vector<BadInput> bad_inputs() {
+  const std::string water_at = R"({"rectangle": {"x_min": 1, "x_max": 4, "y_min": 1, "y_max": 4},
+                                   "depth": 0.5, )";
+  return {
+      // The scenario file itself
+      {"scenario file missing",
+       "",
+       {},
+       kInput,
+       "{dir}/no_such_scene.json",
+       "No such file",
+       Needs::nothing,
+       "no_such_scene.json"},
+      {"scenario file is a folder",
+       "",
+       {},
+       kInput,
+       "{dir}/open",
+       "it is a folder",
+       Needs::nothing,
+       "open"},
+      {"scenario file without read permission",
+       "",
+       {"-o", "{dir}/open/out.nc"},
+       kInput,
+       "{dir}/unreadable.json",
+       "Permission denied",
+       Needs::nobody,
+       "unreadable.json"},
+      {"empty scenario file", "", {}, kInput, "at /:", "unexpected end of input"},
+      // JSON syntax
+      {"trailing comma",
+       R"({"end_time": 1,})",
+       {},
+       kInput,
+       "line 1, column 17",
+       "expected string literal"},
+      {"comment",
+       "{\"end_time\": 1 // seconds\n}",
+       {},
+       kInput,
+       "line 1, column 17",
+       "invalid literal"},
+      {"NaN as a number",
+       R"({"end_time": NaN})",
+       {},
+       kInput,
+       "line 1, column 14",
+       "invalid literal"},
+      {"unclosed object",
+       R"({"end_time": 1, "domain": {"x_min": 0)",
+       {},
+       kInput,
+       "line 1, column 38",
+       "unexpected end of input"},
+      {"a byte that is not UTF-8",
+       "{\"name\": \"caf\xe9\"}",
+       {},
+       kInput,
+       "at /:",
+       "invalid string: ill-formed UTF-8 byte"},
+      {"a line break inside a key (message stays one line)",
+       patched(R"({"water": [{"rectangle": {"x_min": 1, "x_max": 4, "y_min": 1, "y_max": 4},
+                 "depth": 0.5, "spacing": 0.5, "sp\nacing": 1}]})"),
+       {},
+       kInput,
+       "at /water/0/sp\\nacing:",
+       "unknown key \"sp\\nacing\""},
+      // Types and missing keys
+      {"end_time as a string",
+       patched(R"({"end_time": "60"})"),
+       {},
+       kInput,
+       "at /end_time:",
+       "found a string \"60\""},
+      {"water as an object",
+       patched(R"({"water": {"depth": 1}})"),
+       {},
+       kInput,
+       "at /water:",
+       "an array of water bodies"},
+      {"point of three numbers",
+       with_water(R"({"polygon": [[1, 1], [4, 1], [4, 4, 0]], "depth": 0.5, "spacing": 0.5})"),
+       {},
+       kInput,
+       "at /water/0/polygon/2:",
+       "an [x, y] pair of numbers"},
+      {"end_time missing",
+       patched(R"({"end_time": null})"),
+       {},
+       kInput,
+       "at /end_time:",
+       "key missing"},
+      {"spacing missing",
+       patched(R"({"water": [{"rectangle": {"x_min": 1, "x_max": 4,
+                                                                "y_min": 1, "y_max": 4},
+                                                  "depth": 0.5}]})"),
+       {},
+       kInput,
+       "at /water/0/spacing:",
+       "key missing"},
+      // Spacings
+      {"negative spacing",
+       with_water(water_at + R"("spacing": -0.5})"),
+       {},
+       kInput,
+       "at /water/0/spacing:",
+       "found -0.5, expected a number > 0"},
+      {"zero spacing",
+       with_water(water_at + R"("spacing": 0})"),
+       {},
+       kInput,
+       "at /water/0/spacing:",
+       "found 0, expected a number > 0"},
+      {"zero output grid spacing",
+       patched(R"({"output": {"grid": {"spacing": 0}}})"),
+       {},
+       kInput,
+       "at /output/grid/spacing:",
+       "expected a number > 0"},
+      // Times (a run starts at t = 0)
+      {"end_time zero",
+       patched(R"({"end_time": 0})"),
+       {},
+       kInput,
+       "at /end_time:",
+       "found 0, expected a number > 0"},
+      {"end_time negative",
+       patched(R"({"end_time": -10})"),
+       {},
+       kInput,
+       "at /end_time:",
+       "found -10, expected a number > 0"},
+      {"output time after end_time",
+       patched(R"({"output": {"times": [0.01, 0.1]}})"),
+       {},
+       kInput,
+       "at /output/times/1:",
+       "0.1"},
+      {"output time before the start",
+       patched(R"({"output": {"times": [-0.01]}})"),
+       {},
+       kInput,
+       "at /output/times/0:",
+       "-0.01"},
+      {"negative output interval",
+       patched(R"({"output": {"interval": -1}})"),
+       {},
+       kInput,
+       "at /output/interval:",
+       "expected a number > 0"},
+      {"hydrograph going back in time",
+       patched(R"({"inflow": [{"line": [[0.5, 5], [0.5, 6]],
+                               "hydrograph": [[0, 1], [60, 2], [30, 0]]}]})"),
+       {},
+       kInput,
+       "at /inflow/0/hydrograph/2/0:",
+       "a time greater than the previous point's 60"},
+      // Shapes
+      {"water polygon crossing itself (bow tie)",
+       with_water(R"({"polygon": [[1, 1], [4, 4], [4, 1], [1, 4]], "depth": 0.5, "spacing": 0.5})"),
+       {},
+       kInput,
+       "at /water/0/polygon:",
+       "intersecting"},
+      {"lake outline crossing itself",
+       patched(R"({"bed": {"plane": {}}, "water": [{"fill": {"polygon": [[1, 1], [4, 4], [4, 1],
+                   [1, 4]]}, "surface_elevation": 0.5, "spacing": 0.5}]})"),
+       {},
+       kInput,
+       "at /water/0/fill/polygon:",
+       "intersecting"},
+      {"polygon closed by repeating its first vertex",
+       with_water(R"({"polygon": [[1, 1], [4, 1], [4, 4], [1, 1]], "depth": 0.5,
+                      "spacing": 0.5})"),
+       {},
+       kInput,
+       "at /water/0/polygon/0:",
+       "do not repeat the first vertex"},
+      {"domain with x_min > x_max",
+       patched(R"({"domain": {"x_min": 10, "x_max": 0, "y_min": 0, "y_max": 10}})"),
+       {},
+       kInput,
+       "at /domain/x_max:",
+       "a number > x_min"},
+      {"water outside the domain",
+       with_water(R"({"rectangle": {"x_min": 8, "x_max": 12, "y_min": 1, "y_max": 4},
+                      "depth": 0.5, "spacing": 0.5})"),
+       {},
+       kInput,
+       "at /water/0/rectangle:",
+       "outside the domain"},
+      {"gauge outside the domain",
+       patched(R"({"output": {"gauges": [{"name": "bridge", "x": 20, "y": 5}]}})"),
+       {},
+       kInput,
+       "at /output/gauges/0:",
+       "outside the domain"},
+      // Rasters
+      {"raster file missing",
+       with_bed_raster("no_such_dem.tif"),
+       {},
+       kInput,
+       "at /bed/raster:",
+       "'{dir}/no_such_dem.tif': file not found"},
+      {"raster that is not a raster",
+       with_bed_raster("not_a_raster.tif"),
+       {},
+       kInput,
+       "{dir}/not_a_raster.tif",
+       "not recognized as a supported file format"},
+      {"raster that is a folder",
+       with_bed_raster("a_folder.tif"),
+       {},
+       kInput,
+       "{dir}/a_folder.tif",
+       "is a folder, not a raster file"},
+      {"raster without read permission",
+       with_bed_raster("unreadable.tif"),
+       {"-o", "{dir}/open/out.nc"},
+       kInput,
+       "{dir}/unreadable.tif",
+       "cannot be read: Permission denied",
+       Needs::nobody},
+      {"raster cut short (truncated GeoTIFF)",
+       with_bed_raster("truncated.tif"),
+       {},
+       kInput,
+       "{dir}/truncated.tif",
+       "GDAL:"},
+      {"raster without georeferencing",
+       with_bed_raster("unplaced.tif"),
+       {},
+       kInput,
+       "{dir}/unplaced.tif",
+       "has no georeferencing"},
+      {"raster too large for memory (header of 300000 x 300000 cells)",
+       with_bed_raster("huge.asc"),
+       {},
+       kInput,
+       "{dir}/huge.asc",
+       "holds 300000 x 300000 cells",
+       Needs::memory_cap},
+      {"longitude/latitude raster without a target CRS",
+       with_bed_raster("geographic.tif"),
+       {},
+       kInput,
+       "at /bed/raster:",
+       "set bed.crs to a projected CRS in metres to warp it to, e.g. "
+       "\"EPSG:32616\""},
+      {"target CRS GDAL does not know",
+       with_bed_raster("dem.tif", R"(, "crs": "EPSG:99999")"),
+       {},
+       kInput,
+       "at /bed/raster:",
+       "bed.crs = \"EPSG:99999\" is not a CRS GDAL understands"},
+      {"bed raster nodata under the water",
+       with_bed_raster("dem_hole.tif"),
+       {},
+       kInput,
+       "at /domain:",
+       "4 nodata cells of the bed raster inside the domain"},
+      {"depth raster nodata where the water starts",
+       with_water(R"({"rectangle": {"x_min": 1, "x_max": 4, "y_min": 1, "y_max": 4},
+                      "depth_raster": "depth_hole.tif", "spacing": 0.5})"),
+       {},
+       kInput,
+       "at /water/0:",
+       "the depth raster is dry or nodata there"},
+      {"Manning's n raster with nodata in the domain",
+       patched(R"({"friction": {"manning_n_raster": "manning_hole.tif"}})"),
+       {},
+       kInput,
+       "at /friction/manning_n_raster:",
+       "nodata cells inside the domain"},
+      {"hydrograph CSV with a word for a number",
+       patched(R"({"inflow": [{"line": [[0.5, 5], [0.5, 6]],
+                               "hydrograph_csv": "bad_hydrograph.csv"}]})"),
+       {},
+       kInput,
+       "at /inflow/0/hydrograph_csv:",
+       "bad_hydrograph.csv:3"},
+      // Output
+      {"output under a regular file",
+       kGoodScene.dump(),
+       {"-o", "{dir}/a_file/out.nc"},
+       kOutput,
+       "'{dir}/a_file/out.nc'",
+       "'{dir}/a_file' is a file, not a folder"},
+      {"output path that is a folder",
+       kGoodScene.dump(),
+       {"-o", "{dir}/open"},
+       kOutput,
+       "'{dir}/open'",
+       "is a folder"},
+      {"output in folders that do not exist",
+       kGoodScene.dump(),
+       {"-o", "{dir}/no/such/folder/out.nc"},
+       kOutput,
+       "'{dir}/no/such/folder'",
+       "does not exist"},
+      {"output folder that refuses new files",
+       kGoodScene.dump(),
+       {"-o", "/proc/out.nc"},
+       kOutput,
+       "'/proc'",
+       "cannot create files in the folder"},
+      {"empty output path", kGoodScene.dump(), {"-o", ""}, kOutput, "''", "names no file"},
+      // Memory
+      {"water needing more memory than the machine has",
+       patched(R"({"domain": {"x_min": 0, "x_max": 1e6, "y_min": 0, "y_max": 1e6},
+                   "water": [{"rectangle": {"x_min": 0, "x_max": 1e6, "y_min": 0, "y_max": 1e6},
+                              "depth": 1, "spacing": 0.3}],
+                   "output": {"grid": {"spacing": 1000}}})"),
+       {},
+       kInput,
+       "at /water/0/spacing:",
+       "1.11e+13 particles",
+       Needs::memory_cap},
+      {"Navier-Stokes tank needing more memory than the machine has",
+       R"({"end_time": 0.1, "model": "ns", "ns": {"spacing": 0.001, "tank_height": 2},
+           "domain": {"x_min": 0, "x_max": 10, "y_min": 0, "y_max": 10},
+           "water": [{"rectangle": {"x_min": 0, "x_max": 5, "y_min": 0, "y_max": 10},
+                      "depth": 1}],
+           "output": {"path": "out.nc", "grid": {"spacing": 0.1}}})",
+       {},
+       kInput,
+       "at /ns/spacing:",
+       "fluid and",
+       Needs::memory_cap},
+  };
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+// A markdown table cell: pipes escaped, so that a message holding one keeps its column.
+std::string cell(const std::string& text) { return replaced(text, "|", "\\|"); }
+
+}  // namespace
+
+TEST_CASE("the scene the bad inputs break runs", "[cli][bad-input]") {
+  const swemps::testing::TempDir dir("bad-input");
+  write_text(dir.path() / "scene.json", kGoodScene.dump());
+  const Outcome o = run_cli({"run", (dir.path() / "scene.json").string(), "-q"}, dir.path(), {});
+  INFO(o.err);
+  CHECK(o.status == 0);
+  CHECK(o.err.empty());
+}
+
+TEST_CASE("every bad input is refused with one line naming it and the status of its kind",
+          "[cli][bad-input]") {
+  const swemps::testing::TempDir dir("bad-input");
+  const std::string folder = dir.path().string();
+  write_fixtures(dir.path());
+  const auto cases = bad_inputs();
+  REQUIRE(cases.size() >= 30);
+
+  std::ostringstream table;
+  table << "| Bad input | What swe-mps prints on stderr | Exit status |\n|---|---|---|\n";
+  std::size_t skipped = 0;
+  for (const BadInput& c : cases) {
+    INFO("case: " << c.input);
+    Launch launch;
+    if (c.needs == Needs::memory_cap) {
+      // Far below what either scene asks for, far above what refusing it takes.
+      launch.address_space = rlim_t{2} << 30;
+    }
+    if (c.needs == Needs::nobody && geteuid() == 0) launch.as_nobody = true;
+    write_text(dir.path() / "scene.json", c.scene);
+    std::vector<std::string> args{"run", folder + "/" + c.scene_file, "-q"};
+    for (const auto& a : c.args) args.push_back(replaced(a, "{dir}", folder));
+    const Outcome o = run_cli(args, dir.path(), launch);
+    if (o.status == 126) {
+      // Root that may not become nobody (a container without the capability): the permission
+      // bits cannot be tested.
+      WARN("skipped, cannot drop to user nobody: " << c.input);
+      ++skipped;
+      continue;
+    }
+    INFO("status " << o.status << ", stderr:\n" << o.err);
+    CHECK(o.exited);
+    CHECK(o.signal == 0);
+    CHECK_FALSE(o.core_dumped);
+    CHECK(o.status == c.status);
+    CHECK(o.out.empty());
+    // One line: "swe-mps: ..." and its newline, nothing else (no GDAL or HDF5 chatter).
+    CHECK_THAT(o.err, StartsWith("swe-mps: "));
+    CHECK(std::count(o.err.begin(), o.err.end(), '\n') == 1);
+    CHECK(o.err.back() == '\n');
+    CHECK_THAT(o.err, Contains(replaced(c.where, "{dir}", folder)));
+    CHECK_THAT(o.err, Contains(replaced(c.problem, "{dir}", folder)));
+    const std::string message = replaced(o.err.substr(0, o.err.size() - 1), folder, "<dir>");
+    table << "| " << cell(c.input) << " | `" << cell(message) << "` | " << o.status << " |\n";
+  }
+  if (const char* table_file = std::getenv("SWEMPS_BAD_INPUT_TABLE")) {
+    REQUIRE(skipped == 0);
+    std::ofstream(table_file) << table.str();
+  }
+}
