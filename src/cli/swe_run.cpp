@@ -234,8 +234,8 @@ void log_summary(const swe::Simulation& sim, const std::string& ending,
       sim.relative_volume_change());
   spdlog::info(
       "time per phase: sort {:.3f} s, neighbours {:.3f} s, depth {:.3f} s, gradient {:.3f} s, "
-      "integrate {:.3f} s, walls {:.3f} s, checks {:.3f} s, output {:.3f} s",
-      t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, t.checks, output_s);
+      "integrate {:.3f} s, walls {:.3f} s, snapshots {:.3f} s, output {:.3f} s",
+      t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, t.snapshots, output_s);
   for (const auto& e : sim.effect_times()) {
     spdlog::info("effect '{}': {:.3f} s{}", e.name, e.seconds,
                  e.report.empty() ? "" : " (" + e.report + ")");
@@ -412,8 +412,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
       const std::string written = close_early("interrupted", what, true);
       std::string message = what + "; wrote " + written;
       if (context.checkpoints) {
-        message += "; go on with: swe-mps run " + context.scenario_file.string() + " --restart " +
-                   checkpoint_file.string();
+        message += "; to go on, run the same command with --restart " + checkpoint_file.string();
       }
       throw RunStopped(stop_signal, message);
     }

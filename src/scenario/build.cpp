@@ -133,6 +133,10 @@ class SceneCrs {
   std::string wkt_, target_, target_setting_;
 };
 
+std::string nodata_cells(std::size_t count) {
+  return std::to_string(count) + (count == 1 ? " nodata cell" : " nodata cells");
+}
+
 // A raster the solver samples everywhere in the domain must cover it without gaps.
 void check_covers(const Field& field, const Rectangle& domain, const std::string& json_path,
                   const std::string& what) {
@@ -145,8 +149,8 @@ void check_covers(const Field& field, const Rectangle& domain, const std::string
   const auto nodata = field.nodata_in(domain.x_min, domain.x_max, domain.y_min, domain.y_max);
   if (nodata.count > 0) {
     throw ScenarioError(json_path,
-                        what + " with " + std::to_string(nodata.count) +
-                            " nodata cells inside the domain, the first centred at " +
+                        what + " with " + nodata_cells(nodata.count) +
+                            " inside the domain, the first centred at " +
                             fmt_point(nodata.x_m, nodata.y_m),
                         "no nodata inside the domain: shrink the domain to avoid them, or fill "
                         "the raster's gaps");
@@ -186,9 +190,8 @@ Rectangle settle_domain(const Scenario& scene, const Field& bed) {
   const auto nodata = bed.nodata_in(domain.x_min, domain.x_max, domain.y_min, domain.y_max);
   if (nodata.count > 0) {
     throw ScenarioError(path,
-                        std::to_string(nodata.count) +
-                            " nodata cells of the bed raster inside the domain, the first centred "
-                            "at " +
+                        nodata_cells(nodata.count) +
+                            " of the bed raster inside the domain, the first centred at " +
                             fmt_point(nodata.x_m, nodata.y_m),
                         "a domain without bed nodata: shrink the domain to avoid them, or fill "
                         "the raster's gaps");

@@ -26,6 +26,10 @@ std::string short_number(double v) {
 
 std::string whole(double v) { return std::to_string(std::llround(v)); }
 
+// A count of particles or cells: whole up to ten million, where every digit is read; three
+// significant digits above, where only the size matters.
+std::string count_text(double v) { return v <= 1e7 ? whole(v) : short_number(v); }
+
 std::vector<Point> corners(const Rectangle& r) {
   return {{r.x_min, r.y_min}, {r.x_max, r.y_min}, {r.x_max, r.y_max}, {r.x_min, r.y_max}};
 }
@@ -47,7 +51,7 @@ Share grid_share(const Scenario& scene, const Terrain& terrain, double& cells) {
   const swe::RegularGrid grid = output_grid(scene, terrain);
   cells = static_cast<double>(grid.nx) * static_cast<double>(grid.ny);
   return {cells * kBytesPerGridCell, "/output/grid",
-          short_number(cells) + " cells of the output grid (" + short_number(grid.dx) + " m x " +
+          count_text(cells) + " cells of the output grid (" + short_number(grid.dx) + " m x " +
               short_number(grid.dy) + " m)"};
 }
 
@@ -105,7 +109,7 @@ MemoryNeed swe_memory_need(const Scenario& scene, const Terrain& terrain) {
     const std::string body_path = "/water/" + std::to_string(i);
     keep_largest(need, largest,
                  {points * kBytesPerParticle, body_path + "/spacing",
-                  short_number(points) + " particles of " + body_path + " at a spacing of " +
+                  count_text(points) + " particles of " + body_path + " at a spacing of " +
                       short_number(body.spacing_m) + " m"});
   }
   need.peak_particles = need.particles;
@@ -138,9 +142,9 @@ MemoryNeed ns_memory_need(const Scenario& scene, const ns::TankSpec<Dim>& tank) 
   need.particles = fluid + (box_nodes - interior_nodes);
   need.peak_particles = need.particles;
   need.json_path = "/ns/spacing";
-  need.largest_share =
-      short_number(fluid) + " fluid and " + short_number(box_nodes - interior_nodes) +
-      " wall and dummy particles at a spacing of " + short_number(tank.spacing_m) + " m";
+  need.largest_share = count_text(fluid) + " fluid and " + count_text(box_nodes - interior_nodes) +
+                       " wall and dummy particles at a spacing of " + short_number(tank.spacing_m) +
+                       " m";
   Terrain plan;
   plan.domain = scene.domain;
   double cells = 0.0;
@@ -170,13 +174,13 @@ std::uint64_t usable_memory_bytes() {
 
 void check_fits_in_memory(const MemoryNeed& need, std::uint64_t usable_bytes) {
   if (usable_bytes == 0 || need.bytes() <= static_cast<double>(usable_bytes)) return;
-  std::string particles = short_number(need.particles) + " particles";
+  std::string particles = count_text(need.particles) + " particles";
   if (need.peak_particles > need.particles) {
-    particles += " (" + short_number(need.peak_particles) + " with splitting's headroom)";
+    particles += " (" + count_text(need.peak_particles) + " with splitting's headroom)";
   }
   throw ScenarioError(
       need.json_path,
-      "a scene of about " + particles + " and " + short_number(need.grid_cells) +
+      "a scene of about " + particles + " and " + count_text(need.grid_cells) +
           " output grid cells, needing about " + bytes_text(need.bytes()) + " at " +
           whole(kBytesPerParticle) + " bytes per particle and " + whole(kBytesPerGridCell) +
           " per cell; most of it for " + need.largest_share,

@@ -43,7 +43,7 @@ neighbors::Coordinates<2> positions(const particles::SweParticles& p, std::size_
 }
 
 // Steps between two snapshots kept for the rollback after a breakdown (keep_snapshot()).
-constexpr std::size_t kSnapshotInterval = 16;
+constexpr std::size_t kSnapshotInterval = 32;
 
 constexpr const char* kStateLabel = "swe-mps shallow-water simulation";
 
@@ -98,14 +98,17 @@ std::string number(double a) {
 // What is wrong with particle i of a refreshed state, in the order the quantities derive from
 // each other: a broken volume breaks the depth of every neighbour, a broken depth the area.
 std::string describe_refreshed(const particles::SweParticles& p, std::size_t i) {
-  const std::string who = "of particle " + std::to_string(i) + " at " + pair(p.x[i], p.y[i]) + " m";
-  if (!finite(p.x[i], p.y[i])) return "non-finite position " + pair(p.x[i], p.y[i]) + " m " + who;
+  const std::string particle = " of particle " + std::to_string(i);
+  if (!finite(p.x[i], p.y[i]))
+    return "non-finite position " + pair(p.x[i], p.y[i]) + " m" + particle;
+  const std::string where = particle + " at " + pair(p.x[i], p.y[i]) + " m";
   if (!finite(p.u[i], p.v[i])) {
-    return "non-finite velocity (u, v) = " + pair(p.u[i], p.v[i]) + " m/s " + who;
+    return "non-finite velocity (u, v) = " + pair(p.u[i], p.v[i]) + " m/s" + where;
   }
-  if (!std::isfinite(p.volume[i])) return "non-finite volume " + number(p.volume[i]) + " m3 " + who;
-  if (!std::isfinite(p.depth[i])) return "non-finite depth " + number(p.depth[i]) + " m " + who;
-  return "non-finite area " + number(p.area[i]) + " m2 " + who;
+  if (!std::isfinite(p.volume[i]))
+    return "non-finite volume " + number(p.volume[i]) + " m3" + where;
+  if (!std::isfinite(p.depth[i])) return "non-finite depth " + number(p.depth[i]) + " m" + where;
+  return "non-finite area " + number(p.area[i]) + " m2" + where;
 }
 
 }  // namespace
@@ -140,46 +143,47 @@ void Simulation::sort_by_cell() {
   particles_.reorder(order_);
 }
 
-// Non-finite values are looked for where they would first do harm, and almost always in
-// passes the step makes anyway. Values derive from one another, so a few stand for the rest:
-//  - positions, before the cell lists are built from them: a non-finite acceleration or
-//    velocity makes the position non-finite (x += dt u), so the move loop, which reads every
-//    position it writes, tells whether all are finite. Only where the topology stage changed the
-//    particle set (new particles have not moved yet) does a separate pass check positions and
-//    velocities, and where a resolution effect added particles, positions.
+// Non-finite values are found in passes the step makes anyway; values derive from one
+// another, so a few stand for the rest:
+//  - positions: a non-finite acceleration or velocity makes the position non-finite
+//    (x += dt u), and the move loop, which reads every position it writes, tells whether all
+//    are finite. Particles an effect added have not moved: the cell lists, which refuse a
+//    non-finite coordinate (std::domain_error) before binning anything, check theirs.
 //  - the refreshed fields, by eq 13's reduction, which refresh() computes for the next step:
 //    a non-finite depth or velocity makes a particle's step 0 or NaN, and so the minimum (NaN
 //    is never skipped); a non-finite volume makes the depth non-finite (eq 7 includes the self
 //    term); and A = V / h cannot be infinite for a finite V, as h >= V w(0).
-// Once a check fails, a serial scan finds the first broken particle and names the quantity that
-// broke first. The cost is that of the snapshots alone (docs/robustness-failing-well.md).
+// Once one of these fails, a serial scan finds the first broken particle and names the
+// quantity that broke first. What failing well costs is the snapshots (keep_snapshot()).
 void Simulation::refresh() {
   if (fresh_) return;
-  if (!positions_checked_) check_moved_positions();
-  update_fields(sorting_due());
+  if (!moved_finite_) report_broken_positions();
+  update_fields_checked(sorting_due());
   const std::size_t before = particles_.fluid_count();
   run_effects(Stage::resolution, 0.0);
   // A resolution effect changed the particle set: the neighbour list and the sums no longer
   // describe it. Once more, without the resolution stage, so one step splits at most once.
-  if (particles_.fluid_count() != before) {
-    check_added_particles("the resolution stage (particle splitting)");
-    update_fields(sorting_due());
-  }
+  if (particles_.fluid_count() != before) update_fields_checked(sorting_due());
   check_refreshed_fields();
   fresh_ = true;
-  set_changed_ = false;
-  positions_checked_ = true;
   keep_snapshot();
 }
 
-void Simulation::check_moved_positions() {
+void Simulation::update_fields_checked(bool sort) {
+  try {
+    update_fields(sort);
+  } catch (const std::domain_error&) {
+    report_broken_positions();
+    throw;  // not a position after all
+  }
+}
+
+void Simulation::report_broken_positions() {
   const std::size_t n = particles_.fluid_count();
   auto& p = particles_;
-  {
-    ScopedTimer timer(phase_times_.checks);
-    if (all_finite({&p.x, &p.y}, n) && (!set_changed_ || all_finite({&p.u, &p.v}, n))) return;
-  }
-  const std::size_t i = *first_broken({&p.x, &p.y, &p.u, &p.v}, n);
+  const auto broken = first_broken({&p.x, &p.y, &p.u, &p.v}, n);
+  if (!broken) return;
+  const std::size_t i = *broken;
   // With the numbering kept, the step's acceleration and starting position of i are known.
   const bool known = numbering_kept_ && steps_ > 0 && i < moved_count_ && i < accel_x_.size();
   std::string what;
@@ -196,21 +200,9 @@ void Simulation::check_moved_positions() {
   } else if (finite(p.x[i], p.y[i])) {
     what += " at " + pair(p.x[i], p.y[i]) + " m";
   } else if (steps_ > 0) {
-    what += " (added by a topology-stage effect in this step)";
+    what += " (added by an effect in this step)";
   }
   break_down(what);
-}
-
-// Positions only: the velocities of new particles are in eq 13's reduction.
-void Simulation::check_added_particles(const char* added_by) {
-  const std::size_t n = particles_.fluid_count();
-  auto& p = particles_;
-  {
-    ScopedTimer timer(phase_times_.checks);
-    if (all_finite({&p.x, &p.y}, n)) return;
-  }
-  const std::size_t i = *first_broken({&p.x, &p.y, &p.u, &p.v}, n);
-  break_down(describe_refreshed(p, i) + " after " + added_by);
 }
 
 void Simulation::check_refreshed_fields() {
@@ -244,13 +236,13 @@ void Simulation::break_down(const std::string& what_happened) {
   throw SimulationError(message.str(), true);
 }
 
-// Going back to the last good state. A copy of the state at the start of every step would cost
-// a pass over 10 fields of 8 bytes per particle, every step, plus what the effects hold. The
-// step is deterministic instead (the same for any number of threads), so a snapshot taken every
-// kSnapshotInterval steps and the time steps since are enough: restoring the snapshot and
-// replaying all but the failed step lands bit for bit on the state that step started from. The
-// snapshot costs one such pass every kSnapshotInterval steps (about 0.1 % of a step, and 80
-// bytes per particle of memory); the replay, at most kSnapshotInterval steps, only after a
+// Going back to the last good state. A copy of the state at the start of every step (10 fields
+// of 8 bytes per particle, and what the effects hold) would cost 2 to 4 % of every step,
+// measured at 1e5 and 1e6 particles. The step is deterministic instead (the same for any number
+// of threads), so a snapshot taken every kSnapshotInterval steps and the time steps since are
+// enough: restoring the snapshot and replaying all but the failed step lands bit for bit on the
+// state that step started from. The snapshots cost 0.1 to 0.3 % of a step and 80 bytes per
+// particle of memory; the replay, at most kSnapshotInterval - 1 steps, is paid only after a
 // breakdown.
 bool Simulation::roll_back() {
   if (!has_snapshot_ || steps_since_snapshot_.empty()) return false;
@@ -272,7 +264,7 @@ bool Simulation::roll_back() {
 
 void Simulation::keep_snapshot() {
   if (replaying_ || (has_snapshot_ && steps_ < snapshot_step_ + kSnapshotInterval)) return;
-  ScopedTimer timer(phase_times_.checks);
+  ScopedTimer timer(phase_times_.snapshots);
   snapshot_.clear();
   // Room for the fields and a margin for what grows between snapshots, allocated at once: grown
   // piecemeal, the buffer would end up to twice the size it needs.
@@ -389,8 +381,7 @@ void Simulation::load_state(StateReader& in) {
   rebuild_neighborhood();
   fluid_limit_ = swe::stable_time_step(particles_, settings_.gravity_m_s2, settings_.cfl);
   fresh_ = true;
-  set_changed_ = false;
-  positions_checked_ = true;
+  moved_finite_ = true;
 }
 
 // update_fields() without the radius, the sort and the sums: the ghosts and neighbour list of
@@ -473,8 +464,6 @@ VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth
   }
   report.iterations = std::min(report.iterations, max_iterations);
   fresh_ = false;
-  set_changed_ = true;
-  positions_checked_ = false;
   has_snapshot_ = false;  // the volumes changed: the next refresh takes a new one
   ledger_.initial_m3 = particles_.total_fluid_volume();
   report.volume_after_m3 = ledger_.initial_m3;
@@ -587,13 +576,13 @@ void Simulation::advance(double dt_s) {
     });
   }
   run_effects(Stage::velocity, dt_s);
-  bool moved_finite = true;
   {
     ScopedTimer timer(phase_times_.integrate);
     old_x_.resize(n);
     old_y_.resize(n);
     // The move also tells whether every new position is finite (refresh() says why that is
-    // enough): a flag per chunk, ORed without a branch.
+    // enough): a flag per chunk, ORed without a branch. A reflection at a wall (below) keeps a
+    // finite position finite.
     constexpr double kLargest = std::numeric_limits<double>::max();
     std::array<std::uint8_t, reduction_chunks> broken{};
     parallel_chunks(n, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
@@ -607,7 +596,7 @@ void Simulation::advance(double dt_s) {
       }
       broken[chunk] = bad;
     });
-    moved_finite = std::none_of(broken.begin(), broken.end(), [](std::uint8_t b) { return b; });
+    moved_finite_ = std::none_of(broken.begin(), broken.end(), [](std::uint8_t b) { return b; });
   }
   {
     ScopedTimer timer(phase_times_.walls);
@@ -621,9 +610,6 @@ void Simulation::advance(double dt_s) {
   // mean the same particles in the same order.
   numbering_kept_ = particles_.fluid_count() == n && ledger_.added_m3 == added_m3 &&
                     ledger_.removed_m3 == removed_m3;
-  set_changed_ = set_changed_ || !numbering_kept_;
-  // A reflection at a wall keeps a finite position finite.
-  positions_checked_ = moved_finite && numbering_kept_;
   moved_count_ = n;
   last_dt_s_ = dt_s;
   steps_since_snapshot_.push_back(dt_s);

@@ -1,5 +1,7 @@
 #include "swemps/swe/state_record.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 
 namespace swemps::swe {
@@ -84,10 +86,21 @@ std::span<const std::byte> StateReader::bytes() {
 
 void StateReader::expect(std::string_view label) {
   const std::size_t at = offset_;
-  const std::string found = text();
+  std::string found;
+  try {
+    found = text();
+  } catch (const StateError&) {
+    // A length that runs past the end: not a label at all.
+  }
   if (found != label) {
+    // Whatever stands there may be binary: quoted only when it reads as a short label.
+    const bool readable =
+        !found.empty() && found.size() <= 64 && std::all_of(found.begin(), found.end(), [](char c) {
+          return std::isprint(static_cast<unsigned char>(c)) != 0;
+        });
     throw StateError(what_ + " is not what was expected: '" + std::string(label) +
-                     "' expected at byte " + std::to_string(at) + ", found '" + found + "'");
+                     "' expected at byte " + std::to_string(at) + ", found " +
+                     (readable ? "'" + found + "'" : std::string("something else")));
   }
 }
 

@@ -61,9 +61,9 @@ class SimulationError : public std::runtime_error {
 
 struct PhaseTimes {  // wall-clock seconds spent in each part of the step
   double sort = 0.0, neighbors = 0.0, depth = 0.0, gradient = 0.0, integrate = 0.0, walls = 0.0;
-  // Checks for non-finite values beyond those the step makes in passing, and the snapshots
-  // kept for a rollback.
-  double checks = 0.0;
+  // The snapshots kept for a rollback after a breakdown (the checks for non-finite values ride
+  // on passes the step makes anyway).
+  double snapshots = 0.0;
 };
 
 // What Simulation::balance_volumes() did.
@@ -154,8 +154,11 @@ class Simulation {
   // refresh() without the resolution stage; `sort`: sort the particles by cell first.
   void update_fields(bool sort);
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
-  void check_moved_positions();
-  void check_added_particles(const char* added_by);
+  // update_fields() that turns the cell lists' refusal of a non-finite coordinate into one.
+  void update_fields_checked(bool sort);
+  // Names the first particle with a non-finite position or velocity and breaks down; returns
+  // if there is none.
+  void report_broken_positions();
   void check_refreshed_fields();
   [[noreturn]] void break_down(const std::string& what_happened);
   // Back to the last good state: the snapshot restored, then the steps since replayed. False
@@ -186,11 +189,10 @@ class Simulation {
   std::size_t steps_ = 0, particle_steps_ = 0, wall_reflections_ = 0;
   std::size_t last_sort_step_ = 0, sorted_count_ = 0;  // when the particles were last sorted
   bool fresh_ = false;
-  // Since the last step: whether its topology stage kept the particles' numbering (nothing
-  // added or removed), so that old_x_, old_y_ and the accelerations still name them; whether
-  // the particle set changed (then velocities are checked as well as positions).
-  bool numbering_kept_ = true, set_changed_ = true;
-  bool positions_checked_ = false;     // the move loop found every position of the set finite
+  // Since the last step: whether its move left every position finite, and whether its
+  // topology stage kept the particles' numbering (nothing added or removed), so that old_x_,
+  // old_y_ and the accelerations still name them.
+  bool moved_finite_ = true, numbering_kept_ = true;
   TimeStepLimit fluid_limit_{0.0, 0};  // eq 13 on the fields of the last refresh
   std::size_t moved_count_ = 0;        // fluid particles the last step moved
   double last_dt_s_ = 0.0;
