@@ -384,22 +384,24 @@ void Simulation::load_state(StateReader& in) {
   moved_finite_ = true;
 }
 
+void Simulation::add_ghosts_and_neighbors() {
+  {
+    ScopedTimer timer(phase_times_.walls);
+    walls_.add_ghosts(particles_, kernel_.support());
+  }
+  ScopedTimer timer(phase_times_.neighbors);
+  const auto coords = positions(particles_, particles_.size());
+  cells_.build(coords, kernel_.support(), kCellSubdivisions);
+  build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
+                         neighbor_list_);
+}
+
 // update_fields() without the radius, the sort and the sums: the ghosts and neighbour list of
 // a restored state, which are functions of the saved positions, fields and radius alone.
 void Simulation::rebuild_neighborhood() {
   particles_.drop_ghosts();
   if (particles_.fluid_count() == 0) return;
-  {
-    ScopedTimer timer(phase_times_.walls);
-    walls_.add_ghosts(particles_, kernel_.support());
-  }
-  {
-    ScopedTimer timer(phase_times_.neighbors);
-    const auto coords = positions(particles_, particles_.size());
-    cells_.build(coords, kernel_.support(), kCellSubdivisions);
-    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
-                           neighbor_list_);
-  }
+  add_ghosts_and_neighbors();
   boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
 }
 
@@ -486,17 +488,7 @@ void Simulation::update_fields(bool sort) {
   kernel_ = Kernel(influence_radius(particles_, settings_.alpha_e, settings_.max_area_ratio,
                                     1.0 / kernel_.w(0.0)));
   if (sort) sort_by_cell();
-  {
-    ScopedTimer timer(phase_times_.walls);
-    walls_.add_ghosts(particles_, kernel_.support());
-  }
-  {
-    ScopedTimer timer(phase_times_.neighbors);
-    const auto coords = positions(particles_, particles_.size());
-    cells_.build(coords, kernel_.support(), kCellSubdivisions);
-    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
-                           neighbor_list_);
-  }
+  add_ghosts_and_neighbors();
   {
     ScopedTimer timer(phase_times_.depth);
     sum_depth(particles_, neighbor_list_, kernel_);

@@ -152,6 +152,8 @@ class Simulation {
 
  private:
   // refresh() without the resolution stage; `sort`: sort the particles by cell first.
+  // Wall ghosts for the current radius, then the neighbour list over fluid and ghosts.
+  void add_ghosts_and_neighbors();
   void update_fields(bool sort);
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
   // update_fields() that turns the cell lists' refusal of a non-finite coordinate into one.
