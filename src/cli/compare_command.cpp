@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "swemps/cli/output.hpp"
+#include "swemps/cli/output_target.hpp"
 #include "swemps/cli/runs.hpp"
 #include "swemps/scenario/scenario.hpp"
 
@@ -62,9 +63,9 @@ double ritter_front(double x_dam_m, double depth_m, double gravity_m_s2, double 
 void compare(const Options& options, const std::string& command_line) {
   const auto scene = scenario::load(options.scenario);
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  std::filesystem::path stem = options.output
-                                   ? std::filesystem::absolute(*options.output).lexically_normal()
-                                   : std::filesystem::path(scene.output.path).replace_extension();
+  const std::filesystem::path stem =
+      options.output ? output_option(*options.output)
+                     : std::filesystem::path(scene.output.path).replace_extension();
 
   scenario::Scenario swe_scene = scene;
   swe_scene.model = scenario::Model::swe;
@@ -81,6 +82,11 @@ void compare(const Options& options, const std::string& command_line) {
   }
   // Before anything runs, so that a scene model ns cannot take fails at once.
   scenario::check_ns_scene(ns_scene);
+  const std::filesystem::path fronts_path = with_suffix(stem, ".fronts.csv");
+  if (!stem.has_filename()) check_output_target(stem);  // -o "" would name ".swe.nc"
+  for (const auto& file : {swe_scene.output.path, ns_scene.output.path, fronts_path}) {
+    check_output_target(file);
+  }
 
   // Ritter's dam is the downstream (largest x) edge of the first water body.
   const auto& dam = scene.water.front();
@@ -102,8 +108,7 @@ void compare(const Options& options, const std::string& command_line) {
   spdlog::info("compare 2/2: Navier-Stokes, 3D -> {}", ns_scene.output.path.string());
   const RunReport ns = run_ns(ns_scene, context, recorder(ns_fronts));
 
-  CsvTable fronts(with_suffix(stem, ".fronts.csv"),
-                  {"time_s", "swe_front_m", "ns_front_m", "ritter_front_m"});
+  CsvTable fronts(fronts_path, {"time_s", "swe_front_m", "ns_front_m", "ritter_front_m"});
   for (const double t : front_times(scene)) {
     const std::vector<double> row{t, front_at(swe_fronts, t), front_at(ns_fronts, t),
                                   ritter_front(x_dam, h0, g, t)};

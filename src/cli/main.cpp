@@ -5,12 +5,15 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "swemps/cli/options.hpp"
 #include "swemps/cli/run_command.hpp"
 #include "swemps/io/checkpoint.hpp"
+#include "swemps/io/gdal_messages.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/swe/simulation.hpp"
@@ -26,10 +29,21 @@ void set_up_logging(swemps::cli::Verbosity verbosity) {
     case swemps::cli::Verbosity::verbose: logger->set_level(spdlog::level::debug); break;
   }
   spdlog::set_default_logger(logger);
+  // What GDAL reports outside the readers' own checks (the readers fold its errors into
+  // theirs) joins the log instead of appearing as its own "ERROR 1:" lines.
+  swemps::io::send_gdal_messages_to([](bool is_error, std::string_view message) {
+    const std::string line = swemps::scenario::printable_line(message);
+    if (is_error) {
+      spdlog::warn("GDAL: {}", line);
+    } else {
+      spdlog::debug("GDAL: {}", line);
+    }
+  });
 }
 
+// One line: a file name or key with a line break in it cannot split the message.
 int fail(int status, const std::string& message) {
-  std::fprintf(stderr, "swe-mps: %s\n", message.c_str());
+  std::fprintf(stderr, "swe-mps: %s\n", swemps::scenario::printable_line(message).c_str());
   return status;
 }
 
@@ -45,7 +59,9 @@ int main(int argc, char** argv) {
   try {
     options = parse_options(args);
   } catch (const UsageError& e) {
-    return fail(exit_input, std::string(e.what()) + "\n\n" + usage_text());
+    fail(exit_input, e.what());
+    std::fprintf(stderr, "\n%s", usage_text().c_str());
+    return exit_input;
   }
   if (options.command == "help") {
     std::fputs(usage_text().c_str(), stdout);
@@ -74,6 +90,12 @@ int main(int argc, char** argv) {
     return fail(exit_breakdown, std::string("the simulation broke down: ") + e.what());
   } catch (const OutputError& e) {
     return fail(exit_output, std::string("cannot write output: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    // The scene's memory is checked before the run starts; this is a scene that grew (by
+    // splitting, say) or a machine whose memory others took meanwhile.
+    return fail(exit_internal,
+                "out of memory: the run needed more memory than it could get (a coarser "
+                "spacing, a lower splitting.max_particles, or a machine with more memory)");
   } catch (const std::exception& e) {
     return fail(exit_internal, std::string("error: ") + e.what());
   }

@@ -74,4 +74,8 @@ void check_output_target(const std::filesystem::path& file) {
   if (!existed) std::filesystem::remove(partial, ec);
 }
 
+std::filesystem::path output_option(const std::filesystem::path& given) {
+  return given.empty() ? given : std::filesystem::absolute(given).lexically_normal();
+}
+
 }  // namespace swemps::cli

@@ -22,11 +22,7 @@ void run(const Options& options, const std::string& command_line) {
     return;
   }
   auto scene = scenario::load(options.scenario);
-  if (options.output) {
-    // absolute() throws on an empty path, which check_output_target reports instead.
-    const auto& path = *options.output;
-    scene.output.path = path.empty() ? path : std::filesystem::absolute(path).lexically_normal();
-  }
+  if (options.output) scene.output.path = output_option(*options.output);
   check_output_target(scene.output.path);
   if (options.threads > 0) omp_set_num_threads(options.threads);
   const RunContext context = run_context(options, command_line, scene);

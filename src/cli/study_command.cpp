@@ -32,6 +32,7 @@
 #include <thread>
 #include <vector>
 
+#include "swemps/cli/output_target.hpp"
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/run_command.hpp"
 #include "swemps/cli/timing.hpp"
@@ -548,8 +549,8 @@ void study(const Options& options, const std::string& /*command_line*/) {
                               static_cast<int>(runs.size()));
   const int threads = options.threads > 0 ? options.threads : std::max(1, cores / jobs);
   const std::filesystem::path output =
-      options.output ? std::filesystem::absolute(*options.output).lexically_normal()
-                     : definition.output;
+      options.output ? output_option(*options.output) : definition.output;
+  check_output_target(output);
 
   spdlog::info("study '{}': {} runs of scene '{}', {} at once, {} each, end time {} s",
                options.scenario.string(), runs.size(), base.name, jobs, threads_text(threads),

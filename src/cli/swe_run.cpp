@@ -133,6 +133,26 @@ struct Restart {
   io::Checkpoint checkpoint;
 };
 
+// A raster bed with cells under 3 particle spacings can be rough inside one kernel support,
+// where eq 7's smoothed depth cannot balance it: still water over such a bed was measured to
+// start moving and, at 1 spacing, to break down (docs/robustness.md, "Hard cases").
+void warn_if_bed_finer_than_particles(const scenario::Scenario& scene,
+                                      const scenario::Terrain& terrain) {
+  if (!terrain.bed_raster) return;
+  double spacing = 0.0;
+  for (const auto& w : scene.water) spacing = std::max(spacing, w.spacing_m);
+  for (const auto& in : scene.inflows) spacing = std::max(spacing, in.spacing_m);
+  const auto& g = terrain.bed_raster->geometry();
+  const double cell = std::min(g.cell_width, g.cell_height);
+  constexpr double kSmoothCells = 3.0;  // in particle spacings; see docs/robustness.md
+  if (spacing <= 0.0 || cell >= kSmoothCells * spacing) return;
+  spdlog::warn(
+      "the bed raster's cells ({:.3g} m) are narrower than 3 particle spacings (3 x {:.3g} m): "
+      "a bed rough from cell to cell can set still water moving; where water should rest, "
+      "resample the bed to cells of {:.3g} m or more",
+      cell, spacing, kSmoothCells * spacing);
+}
+
 // Reads the checkpoint and checks that it was written for this scenario file, before anything
 // is built: a wrong checkpoint is refused at once.
 Restart read_restart(const std::filesystem::path& file, std::uint64_t scenario_hash,
@@ -293,6 +313,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   } else {
     log_starting_volumes(built.volumes);
   }
+  warn_if_bed_finer_than_particles(scene, built.terrain);
 
   const auto grid = scenario::output_grid(scene, built.terrain);
   std::optional<io::WriterPosition> resume_at;
@@ -370,8 +391,11 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     if (state_kept && context.checkpoints) write_checkpoint();
     output.close_stopped(status, message);
     progress.finish();
-    log_summary(sim, status == "breakdown" ? "broke down" : "stopped", initial_particles,
-                initial_particle_steps, seconds_since(start), output.seconds(),
+    log_summary(sim,
+                status == "breakdown" ? "broke down"
+                : status == "failed"  ? "failed"
+                                      : "stopped",
+                initial_particles, initial_particle_steps, seconds_since(start), output.seconds(),
                 output.partial_path());
     if (!state_kept) return output.partial_path().string();
     std::string written =
@@ -424,6 +448,19 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     } catch (const std::exception& also) {
       spdlog::error("the simulation broke down, and its last good state could not be written: {}",
                     also.what());
+    }
+    throw;
+  } catch (const RunStopped&) {
+    throw;  // closed above
+  } catch (const std::exception& e) {
+    // Anything else (memory running out while particles split, a disk filling up): the maps
+    // written so far stay readable, closed with the reason. The state of the step that
+    // failed is not trusted, so nothing of it is written.
+    try {
+      const std::string written = close_early("failed", e.what(), false);
+      spdlog::error("the run failed; kept the output written so far in {}", written);
+    } catch (const std::exception& also) {
+      spdlog::error("the run failed, and its output could not be closed: {}", also.what());
     }
     throw;
   }

@@ -19,6 +19,8 @@
 #include <utility>
 #include <vector>
 
+#include "swemps/io/gdal_messages.hpp"
+
 namespace swemps::io {
 
 namespace {
@@ -162,15 +164,6 @@ std::vector<CfParameter> cf_projection_parameters(const OGRSpatialReference& srs
   return {};
 }
 
-// Silences GDAL's error printing while it lives.
-class QuietGdalErrors {
- public:
-  QuietGdalErrors() { CPLPushErrorHandler(CPLQuietErrorHandler); }
-  ~QuietGdalErrors() { CPLPopErrorHandler(); }
-  QuietGdalErrors(const QuietGdalErrors&) = delete;
-  QuietGdalErrors& operator=(const QuietGdalErrors&) = delete;
-};
-
 // Parses and checks the grid's CRS. Throws std::invalid_argument for WKT that GDAL cannot
 // read or a CRS whose x and y are not metres: the model's coordinates are metres, so any
 // other CRS would misplace the grid.
@@ -180,7 +173,6 @@ Crs describe_crs(const std::string& wkt, const std::filesystem::path& file) {
   {
     // GDAL's complaint goes into the exception instead of onto stderr.
     const QuietGdalErrors quiet;
-    CPLErrorReset();
     if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) {
       throw std::invalid_argument(where +
                                   " is not WKT that GDAL can read: " + CPLGetLastErrorMsg());

@@ -16,11 +16,12 @@
 #include <memory>
 #include <mutex>
 #include <numbers>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 #include <vector>
+
+#include "swemps/io/gdal_messages.hpp"
 
 namespace swemps::io {
 
@@ -32,19 +33,6 @@ void register_drivers() {
   static std::once_flag once;
   std::call_once(once, [] { GDALAllRegister(); });
 }
-
-// While alive, GDAL keeps its error messages to itself (on this thread); they are read back
-// with gdal_detail() and folded into our exceptions instead of being printed.
-class QuietGdalErrors {
- public:
-  QuietGdalErrors() {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
-  }
-  ~QuietGdalErrors() { CPLPopErrorHandler(); }
-  QuietGdalErrors(const QuietGdalErrors&) = delete;
-  QuietGdalErrors& operator=(const QuietGdalErrors&) = delete;
-};
 
 std::string gdal_detail() {
   const char* message = CPLGetLastErrorMsg();
@@ -240,11 +228,22 @@ std::string why_not_opened(const std::filesystem::path& name) {
 }  // namespace
 
 std::optional<WrappedDataset> split_dataset_name(const std::string& name) {
-  // The driver name needs two letters or more, so a drive letter ("C:") is no driver.
-  static const std::regex wrapped(R"re(^([A-Za-z][A-Za-z0-9_]+):"([^"]+)"(.*)$)re");
-  std::smatch m;
-  if (!std::regex_match(name, m, wrapped)) return std::nullopt;
-  return WrappedDataset{m[1].str(), m[2].str(), m[3].str()};
+  // DRIVER:"file"rest, scanned by hand: a regular expression recurses once per character
+  // and overflows the stack on long names. The driver name needs two characters or more,
+  // so a drive letter ("C:") is no driver.
+  const auto is_letter = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+  const auto is_word = [&](char c) { return is_letter(c) || (c >= '0' && c <= '9') || c == '_'; };
+  std::size_t colon = 0;
+  while (colon < name.size() && is_word(name[colon])) ++colon;
+  if (colon < 2 || !is_letter(name[0])) return std::nullopt;
+  if (name.compare(colon, 2, ":\"") != 0) return std::nullopt;
+  const std::size_t file_start = colon + 2;
+  const std::size_t quote = name.find('"', file_start);
+  if (quote == std::string::npos || quote == file_start) return std::nullopt;
+  std::string rest = name.substr(quote + 1);
+  if (rest.find_first_of("\n\r") != std::string::npos) return std::nullopt;
+  return WrappedDataset{name.substr(0, colon), name.substr(file_start, quote - file_start),
+                        std::move(rest)};
 }
 
 std::string utm_crs_for(double longitude_deg, double latitude_deg) {

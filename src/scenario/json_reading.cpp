@@ -236,6 +236,13 @@ class DuplicateKeyGuard {
       case Event::object_start:
       case Event::array_start: {
         std::string path = frames_.empty() ? std::string() : next_child();
+        // Each level keeps its path, so memory grows with the square of the depth; no
+        // scenario needs more than a handful of levels.
+        if (frames_.size() >= kMaxNesting) {
+          throw ScenarioError(
+              path, "containers nested more than " + std::to_string(kMaxNesting) + " levels deep",
+              "a scenario nested at most " + std::to_string(kMaxNesting) + " levels deep");
+        }
         frames_.push_back(Frame{event == Event::array_start, std::move(path), {}, {}, 0});
         break;
       }
@@ -249,6 +256,8 @@ class DuplicateKeyGuard {
   }
 
  private:
+  static constexpr std::size_t kMaxNesting = 64;
+
   struct Frame {
     bool array;
     std::string path;

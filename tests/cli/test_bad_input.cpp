@@ -7,8 +7,8 @@
 // names the problem and where it is (JSON path or file); the scene layer's own tests
 // (tests/scenario) check the parsing in detail, these check what a user sees.
 //
-// With SWEMPS_BAD_INPUT_TABLE=FILE the test also writes the table of docs/robustness-bad-input.md
-// there: each input with the message it printed, verbatim, and its status.
+// With SWEMPS_BAD_INPUT_TABLE=FILE the test also writes the table of docs/robustness.md
+// ("Bad input") there: each input with the message it printed, verbatim, and its status.
 
 #include <fcntl.h>
 #include <gdal_priv.h>
@@ -184,6 +184,12 @@ void write_fixtures(const fs::path& dir) {
   write_text(dir / "huge.asc",
              "ncols 300000\nnrows 300000\nxllcorner 0\nyllcorner 0\ncellsize 1\n0 0 0\n");
   write_text(dir / "bad_hydrograph.csv", "time_s,discharge_m3_s\n0,10\n60,lots\n");
+  json compare_scene = kGoodScene;
+  compare_scene["ns"] = {{"spacing", 0.25}};
+  write_text(dir / "compare.json", compare_scene.dump());
+  write_text(dir / "study.json",
+             R"({"scene": "scene.json", "sweep": {"spacing": [0.5, 0.25]}, "output": "s.csv",
+                 "reference": {"ritter": {"dam_x": 4, "depth": 0.5, "reservoir_start_x": 1}}})");
   write_text(dir / "a_file", "not a folder\n");
   // Where user nobody may write: the permission cases run as nobody when the tests run as root.
   fs::create_directory(dir / "open");
@@ -211,14 +217,20 @@ std::string with_bed_raster(const std::string& raster, const std::string& extra 
 enum class Needs { nothing, nobody, memory_cap };
 
 struct BadInput {
-  std::string input;  // what is wrong, as docs/robustness-bad-input.md lists it
+  std::string input;  // what is wrong, as docs/robustness.md lists it
   std::string scene;  // the text of <dir>/scene.json
   int status;
   std::string where;              // the JSON path or file the message must name; {dir}: the folder
   std::string problem;            // words of the message that say what is wrong
-  std::vector<std::string> args;  // after "run <dir>/<scene_file> -q"; {dir} as above
-  std::string scene_file = "scene.json";  // what `run` is given, in the folder
+  std::vector<std::string> args;  // after "<command> <dir>/<scene_file> -q"; {dir} as above
+  std::string scene_file = "scene.json";  // what the command is given, in the folder
   Needs needs = Needs::nothing;
+  std::string command = "run";
+
+  BadInput& by(std::string other_command) {
+    command = std::move(other_command);
+    return *this;
+  }
 
   BadInput& with(std::vector<std::string> more_args) {
     args = std::move(more_args);
@@ -269,6 +281,10 @@ std::vector<BadInput> bad_inputs() {
                   "line 1, column 37", "unexpected end of input"),
       input_error("a byte that is not UTF-8", "{\"name\": \"caf\xe9\"}",
                   "at /:", "invalid string: ill-formed UTF-8 byte"),
+      input_error(
+          "arrays nested 1,000 deep",
+          R"({"end_time": 1, "x": )" + std::string(1000, '[') + std::string(1000, ']') + "}",
+          "at /x/0/0/0", "nested more than 64 levels deep"),
       input_error("a line break inside a key (the message stays one line)",
                   with_water("{" + square + R"(, "depth": 0.5, "spacing": 0.5, "sp\nacing": 1})"),
                   "at /water/0/sp\\nacing:", "unknown key \"sp\\nacing\""),
@@ -376,6 +392,17 @@ std::vector<BadInput> bad_inputs() {
       output_error("output folder that refuses new files", "/proc/out.nc", "'/proc'",
                    "cannot create files in the folder"),
       output_error("empty output path", "", "''", "names no file"),
+      output_error("compare output in a folder that does not exist", "{dir}/no/such/cmp",
+                   "'{dir}/no/such/cmp.swe.nc'", "does not exist")
+          .by("compare")
+          .reading("compare.json"),
+      output_error("empty compare output path", "", "''", "names no file")
+          .by("compare")
+          .reading("compare.json"),
+      output_error("study table in a folder that does not exist", "{dir}/no/such/study.csv",
+                   "'{dir}/no/such/study.csv'", "does not exist")
+          .by("study")
+          .reading("study.json"),
       // Memory
       input_error("water needing more memory than the machine has",
                   patched(R"({"domain": {"x_min": 0, "x_max": 1e6, "y_min": 0, "y_max": 1e6},
@@ -440,7 +467,7 @@ TEST_CASE("every bad input is refused with one line naming it and the status of 
     }
     if (c.needs == Needs::nobody && geteuid() == 0) launch.as_nobody = true;
     write_text(dir.path() / "scene.json", c.scene);
-    std::vector<std::string> args{"run", folder + "/" + c.scene_file, "-q"};
+    std::vector<std::string> args{c.command, folder + "/" + c.scene_file, "-q"};
     for (const auto& a : c.args) args.push_back(replaced(a, "{dir}", folder));
     const Outcome o = run_cli(args, dir.path(), launch);
     if (o.status == 126) {

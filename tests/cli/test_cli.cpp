@@ -203,6 +203,9 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
   CHECK_THAT(r.output, Catch::Contains("balanced particle volume"));
   CHECK_THAT(r.output, Catch::Contains("effect 'outflow lines'"));
   CHECK_THAT(r.output, Catch::Contains("effect 'west'"));
+  // 10 m cells under 10 m particles: rough from cell to cell within one kernel support.
+  CHECK_THAT(r.output, Catch::Contains("the bed raster's cells (10 m) are narrower than 3 "
+                                       "particle spacings (3 x 10 m)"));
   REQUIRE(fs::exists(out));
 
   SECTION("GDAL reads the DEM's geotransform and CRS back from the maps") {
@@ -306,6 +309,24 @@ const char* kTinyNsScene = R"({
 })";
 
 }  // namespace
+
+TEST_CASE("a bed raster three particle spacings fine or coarser draws no warning", "[cli]") {
+  const auto dir = fresh_dir("smooth-bed");
+  write_bowl(dir / "bed.tif");
+  std::ofstream(dir / "scenario.json") << R"({
+    "end_time": 0.5,
+    "bed": {"raster": "bed.tif", "crs": "EPSG:32616"},
+    "water": [{"fill": {"rectangle": {"x_min": 500150, "x_max": 500250,
+                                      "y_min": 4000100, "y_max": 4000200}},
+               "surface_elevation": 306, "spacing": 3.3}],
+    "output": {"path": "lake.nc"}
+  })";
+  const auto r = run(cli + " run " + (dir / "scenario.json").string() + " --threads 2");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("520 particles"));  // the scene it meant to run
+  CHECK_THAT(r.output, !Catch::Contains("narrower than 3 particle spacings"));
+}
 
 TEST_CASE("a model ns scene writes column depths that hold its water, and a series table",
           "[cli]") {

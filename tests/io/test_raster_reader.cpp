@@ -21,6 +21,7 @@
 namespace fs = std::filesystem;
 using swemps::io::RasterRequest;
 using swemps::io::read_raster;
+using swemps::io::split_dataset_name;
 using swemps::io::utm_crs_for;
 using swemps::io::write_geotiff;
 using swemps::terrain::GriddedField;
@@ -273,6 +274,29 @@ TEST_CASE("the UTM zone of a point", "[raster]") {
   CHECK(utm_crs_for(180.0, 1.0) == "EPSG:32601");   // the same meridian as 180 W
   CHECK(utm_crs_for(359.0, 10.0) == "EPSG:32630");  // 1 W
   CHECK(utm_crs_for(3.0, 60.0) == "EPSG:32631");
+}
+
+TEST_CASE("a wrapped dataset name splits into driver, file and the rest", "[raster]") {
+  const auto nc = split_dataset_name(R"(NETCDF:"bed.nc":elevation)");
+  REQUIRE(nc);
+  CHECK(nc->driver == "NETCDF");
+  CHECK(nc->file == "bed.nc");
+  CHECK(nc->rest == ":elevation");
+  const auto gpkg = split_dataset_name(R"(GPKG:"dir/my bed.gpkg")");
+  REQUIRE(gpkg);
+  CHECK(gpkg->file == "dir/my bed.gpkg");
+  CHECK(gpkg->rest.empty());
+  CHECK_FALSE(split_dataset_name(R"(C:"bed.tif")"));  // a drive letter, not a driver
+  CHECK_FALSE(split_dataset_name(R"(1X:"bed.tif")"));
+  CHECK_FALSE(split_dataset_name(R"(NETCDF:"":x)"));
+  CHECK_FALSE(split_dataset_name(R"(NETCDF:"bed.nc)"));
+  CHECK_FALSE(split_dataset_name("NETCDF:\"bed.nc\":a\nb"));
+  CHECK_FALSE(split_dataset_name("bed.tif"));
+  // Long names once overflowed the stack of the pattern matcher.
+  CHECK_FALSE(split_dataset_name(std::string(300000, 'a')));
+  const auto long_file = split_dataset_name("GTiff:\"" + std::string(300000, 'b') + "\"");
+  REQUIRE(long_file);
+  CHECK(long_file->file.size() == 300000);
 }
 
 TEST_CASE("the shipped Jacksboro DEM reads in UTM zone 16N", "[raster]") {

@@ -3,12 +3,14 @@
 
 #include <array>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -161,6 +163,9 @@ std::vector<Broken> broken_scenes() {
        "/output/particles", "true or false"},
       {"duplicate key", R"({"end_time": 0.5, "water": [{"depth": 1, "depth": 2}]})",
        "/water/0/depth", "a second time"},
+      {"arrays nested 100 deep",
+       R"({"end_time": 0.5, "x": )" + std::string(100, '[') + std::string(100, ']') + "}",
+       "/x/0/0/0", "found containers nested more than 64 levels deep"},
   };
 }
 
@@ -244,6 +249,37 @@ TEST_CASE("broken scenes name the offending JSON path and say what was expected"
 
 TEST_CASE("broken bed, friction and splitting sections point at the exact key", "[scenario]") {
   check_broken(broken_effect_scenes(), true);
+}
+
+TEST_CASE("a polygon of many vertices is checked edge against edge", "[scenario]") {
+  // A circle of 20,000 vertices, then the same with vertices 5 and 15,000 swapped, which
+  // makes chords that cross.
+  constexpr int n = 20000;
+  json circle = json::array();
+  for (int k = 0; k < n; ++k) {
+    const double a = 2.0 * 3.141592653589793 * k / n;
+    circle.push_back({5.0 + 0.4 * std::cos(a), 0.5 + 0.4 * std::sin(a)});
+  }
+  const auto scene_with = [](const json& polygon) {
+    return edited([&](json& s) {
+      s["water"][0].erase("rectangle");
+      s["water"][0]["polygon"] = polygon;
+    });
+  };
+  CHECK_NOTHROW(parse_text(scene_with(circle)));
+  std::swap(circle[5], circle[15000]);
+  try {
+    parse_text(scene_with(circle));
+    FAIL("a crossed outline was accepted");
+  } catch (const ScenarioError& e) {
+    CHECK(e.json_path() == "/water/0/polygon");
+    // The first crossing pair in edge order, as a plain double loop would report it: edge 4
+    // now runs from vertex 4 across the circle to the old vertex 15,000 and crosses edge
+    // 15,000, which starts where vertex 5 was.
+    CHECK_THAT(std::string(e.what()), Contains("edge 4 "));
+    CHECK_THAT(std::string(e.what()), Contains(" and edge 15000 "));
+    CHECK_THAT(std::string(e.what()), Contains("intersecting"));
+  }
 }
 
 TEST_CASE("an error message holds path, found and expected in one line", "[scenario]") {

@@ -90,7 +90,7 @@ class MapOutput {
 
   void finish();  // summary maps and run_status "complete", then the file gets its final name
   // For a run that stops early: the summary maps of the samples so far, the status
-  // ("interrupted", "breakdown") and its message; the file is closed and stays <path>.partial.
+  // ("interrupted", "breakdown", "failed") and its message; the file is closed and stays <path>.partial.
   void close_stopped(const std::string& status, const std::string& message);
   void flush();  // what is written so far onto the disk (before a checkpoint)
 

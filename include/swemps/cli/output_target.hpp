@@ -16,4 +16,8 @@ namespace swemps::cli {
 // is found out even for a user (root) whom permission bits do not stop.
 void check_output_target(const std::filesystem::path& file);
 
+// The path given with -o, absolute and normalised; an empty one stays empty, for
+// check_output_target to report (std::filesystem::absolute throws on it).
+std::filesystem::path output_option(const std::filesystem::path& given);
+
 }  // namespace swemps::cli

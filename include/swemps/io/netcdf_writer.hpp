@@ -134,8 +134,8 @@ class NetcdfWriter {
   // the grid's cells.
   void write_summary(const maps::FloodStatistics& stats);
 
-  // The global attributes run_status ("complete", "interrupted", "breakdown") and, unless
-  // empty, run_status_message; rewritten by each call.
+  // The global attributes run_status ("complete", "interrupted", "breakdown", "failed")
+  // and, unless empty, run_status_message; rewritten by each call.
   void write_status(const std::string& status, const std::string& message);
 
   // Hands what was written so far to the operating system, so that the file on disk holds it

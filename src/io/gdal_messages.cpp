@@ -1,0 +1,38 @@
+#include "swemps/io/gdal_messages.hpp"
+
+#include <cpl_error.h>
+
+#include <mutex>
+#include <utility>
+
+namespace swemps::io {
+
+namespace {
+
+std::mutex sink_mutex;
+GdalMessageSink& current_sink() {
+  static GdalMessageSink sink;
+  return sink;
+}
+
+void CPL_STDCALL forward(CPLErr level, CPLErrorNum /*number*/, const char* message) {
+  const std::lock_guard lock(sink_mutex);
+  if (current_sink()) current_sink()(level >= CE_Failure, message ? message : "");
+}
+
+}  // namespace
+
+void send_gdal_messages_to(GdalMessageSink sink) {
+  const std::lock_guard lock(sink_mutex);
+  current_sink() = std::move(sink);
+  CPLSetErrorHandler(current_sink() ? forward : CPLDefaultErrorHandler);
+}
+
+QuietGdalErrors::QuietGdalErrors() {
+  CPLPushErrorHandler(CPLQuietErrorHandler);
+  CPLErrorReset();
+}
+
+QuietGdalErrors::~QuietGdalErrors() { CPLPopErrorHandler(); }
+
+}  // namespace swemps::io
