@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/netcdf_values.hpp"
 #include "../support/run_command.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/terrain/gridded_field.hpp"
@@ -126,20 +127,9 @@ namespace {
 
 // A whole variable of a netCDF file, as doubles.
 std::vector<double> read_variable(const fs::path& file, const std::string& name) {
-  int ncid = -1, varid = -1, ndims = 0;
+  int ncid = -1;
   REQUIRE(nc_open(file.c_str(), NC_NOWRITE, &ncid) == NC_NOERR);
-  REQUIRE(nc_inq_varid(ncid, name.c_str(), &varid) == NC_NOERR);
-  REQUIRE(nc_inq_varndims(ncid, varid, &ndims) == NC_NOERR);
-  std::vector<int> dims(static_cast<std::size_t>(ndims));
-  REQUIRE(nc_inq_vardimid(ncid, varid, dims.data()) == NC_NOERR);
-  std::size_t count = 1;
-  for (const int dim : dims) {
-    std::size_t length = 0;
-    REQUIRE(nc_inq_dimlen(ncid, dim, &length) == NC_NOERR);
-    count *= length;
-  }
-  std::vector<double> values(count);
-  REQUIRE(nc_get_var_double(ncid, varid, values.data()) == NC_NOERR);
+  std::vector<double> values = swemps::testing::whole_variable(ncid, name.c_str());
   nc_close(ncid);
   return values;
 }

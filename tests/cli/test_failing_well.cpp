@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "../support/netcdf_values.hpp"
 #include "../support/run_command.hpp"
 #include "../support/temp_dir.hpp"
 #include "swemps/cli/runs.hpp"
@@ -120,20 +121,7 @@ class NcFile {
   std::vector<double> times() const { return all("time", "time"); }
   // A variable of any shape, every value (x fastest for a map).
   std::vector<double> whole(const char* name) const {
-    int var = -1, rank = 0;
-    REQUIRE(nc_inq_varid(id_, name, &var) == NC_NOERR);
-    REQUIRE(nc_inq_varndims(id_, var, &rank) == NC_NOERR);
-    std::vector<int> dims(static_cast<std::size_t>(rank));
-    REQUIRE(nc_inq_vardimid(id_, var, dims.data()) == NC_NOERR);
-    std::size_t total = 1;
-    for (const int d : dims) {
-      std::size_t n = 0;
-      REQUIRE(nc_inq_dimlen(id_, d, &n) == NC_NOERR);
-      total *= n;
-    }
-    std::vector<double> values(total);
-    if (total > 0) REQUIRE(nc_get_var_double(id_, var, values.data()) == NC_NOERR);
-    return values;
+    return swemps::testing::whole_variable(id_, name);
   }
   // A particle field at the last map time (contiguous ragged array).
   std::vector<double> last_particles(const char* name) const {
