@@ -103,6 +103,8 @@ void GhostWalls::copy_fields_to_ghosts(particles::SweParticles& p) {
     p.area[k] = p.area[i];
     p.number_density[k] = p.number_density[i];
     p.bed[k] = p.bed[i];
+    p.smoothing_length[k] = p.smoothing_length[i];
+    p.omega[k] = p.omega[i];
   }
 }
 

@@ -50,47 +50,35 @@ inline double distance_squared_at(const std::array<const double*, Dim>& c,
   return r2;
 }
 
-// How many of the points at cell-ordered positions [begin, end) lie closer than the radius.
-// Counted in a double (exact for any count that fits in memory): a floating-point accumulator
-// lets the compiler vectorise the loop with the baseline x86-64 instruction set, an integer
-// one does not.
-template <int Dim>
-double count_within(const std::array<const double*, Dim>& c, const std::array<double, Dim>& p,
-                    std::size_t begin, std::size_t end, double radius2) {
-  double hits = 0.0;
-  for (std::size_t k = begin; k < end; ++k)
-    hits += distance_squared_at<Dim>(c, p, k) < radius2 ? 1.0 : 0.0;
-  return hits;
-}
 
-}  // namespace
-
-template <int Dim>
-void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
-                         std::size_t target_count, double radius, NeighborList& out) {
-  if (radius > cells.search_radius()) {
-    throw std::invalid_argument("neighbour list: radius larger than the cell width");
-  }
+// The two passes of both builders. `within(i, k, r2)` says whether the point at cell-ordered
+// position k, at squared distance r2 from target i, is i's neighbour; it must be a pure
+// function of its arguments, so that the count and the fill pass agree on every candidate.
+template <int Dim, class Within>
+void build_rows(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
+                std::size_t target_count, const Within& within, NeighborList& out) {
   if (target_count > cells.point_count()) {
     throw std::invalid_argument("neighbour list: more targets than binned points");
   }
-  const double radius2 = radius * radius;
   const auto order = cells.order();
   const auto c = cell_ordered_pointers(cells);
-  // A target is one of the binned points, so it meets itself at distance 0 (counted when the
-  // radius is > 0) and the count pass takes that one off.
-  const double self = 0.0 < radius2 ? 1.0 : 0.0;
 
   // Two passes over the candidates, both reading the cell-ordered coordinates with unit
   // stride: the first only counts, so that the rows can be placed exactly; the second writes
   // them. Together they cost less than one pass writing into slots sized for every candidate
-  // and packing afterwards, which also needs three times the memory.
+  // and packing afterwards, which also needs three times the memory. Counts are kept in a
+  // double (exact for any count that fits in memory): a floating-point accumulator lets the
+  // compiler vectorise the loop with the baseline x86-64 instruction set, an integer one does
+  // not. A target is one of the binned points, so it meets itself at distance 0; the fill
+  // pass skips it by index, and the count pass takes it off (within() holds at r2 = 0 for any
+  // radius > 0, and a point with radius 0 has no row).
   out.offsets.assign(target_count + 1, 0);
   parallel_for(target_count, [&](std::size_t i) {
     const auto p = point_at<Dim>(coords, i);
-    double hits = -self;
+    double hits = within(i, std::size_t{0}, -1.0) ? -1.0 : 0.0;
     cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
-      hits += count_within<Dim>(c, p, begin, end, radius2);
+      for (std::size_t k = begin; k < end; ++k)
+        hits += within(i, k, distance_squared_at<Dim>(c, p, k)) ? 1.0 : 0.0;
     });
     out.offsets[i + 1] = static_cast<std::uint32_t>(hits);
   });
@@ -112,10 +100,56 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
         const std::uint32_t j = order[k];
         const bool room = m < length;
         *(room ? index + m : &discard_index) = j;
-        m += (r2 < radius2) & (j != i) ? 1u : 0u;
+        m += within(i, k, r2) & (j != i) ? 1u : 0u;
       }
     });
   });
+}
+
+}  // namespace
+
+template <int Dim>
+void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
+                         std::size_t target_count, double radius, NeighborList& out) {
+  if (radius > cells.search_radius()) {
+    throw std::invalid_argument("neighbour list: radius larger than the cell width");
+  }
+  const double radius2 = radius * radius;
+  // r2 = -1 stands for the target itself (see build_rows): a neighbour of itself when the
+  // radius is > 0.
+  build_rows<Dim>(
+      cells, coords, target_count,
+      [radius2](std::size_t, std::size_t, double r2) { return (r2 < 0.0 ? 0.0 : r2) < radius2; },
+      out);
+}
+
+template <int Dim>
+void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
+                         std::span<const double> radii, std::size_t target_count,
+                         NeighborList& out) {
+  if (radii.size() != cells.point_count()) {
+    throw std::invalid_argument("neighbour list: one radius per binned point needed");
+  }
+  // Squared radii, of the targets by index and of the candidates in cell order (read with
+  // unit stride beside the cell-ordered coordinates).
+  std::vector<double> target_r2(target_count), candidate_r2(radii.size());
+  const auto order = cells.order();
+  double largest = 0.0;
+  for (std::size_t i = 0; i < radii.size(); ++i) largest = std::max(largest, radii[i]);
+  if (largest > cells.search_radius()) {
+    throw std::invalid_argument("neighbour list: radius larger than the cell width");
+  }
+  parallel_for(target_count, [&](std::size_t i) { target_r2[i] = radii[i] * radii[i]; });
+  parallel_for(radii.size(), [&](std::size_t k) {
+    candidate_r2[k] = radii[order[k]] * radii[order[k]];
+  });
+  build_rows<Dim>(
+      cells, coords, target_count,
+      [&](std::size_t i, std::size_t k, double r2) {
+        if (r2 < 0.0) return target_r2[i] > 0.0;
+        return r2 < std::max(target_r2[i], candidate_r2[k]);
+      },
+      out);
 }
 
 template <int Dim>
@@ -139,6 +173,8 @@ NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t t
 
 template void build_neighbor_list<1>(const CellList<1>&, const Coordinates<1>&, std::size_t, double,
                                      NeighborList&);
+template void build_neighbor_list<2>(const CellList<2>&, const Coordinates<2>&,
+                                     std::span<const double>, std::size_t, NeighborList&);
 template void build_neighbor_list<2>(const CellList<2>&, const Coordinates<2>&, std::size_t, double,
                                      NeighborList&);
 template void build_neighbor_list<3>(const CellList<3>&, const Coordinates<3>&, std::size_t, double,

@@ -62,6 +62,8 @@ void SweParticles::add_fluid(double px, double py, double pu, double pv, double 
   initial_area.push_back(a0);
   bed.push_back(zb);
   number_density.push_back(0.0);
+  smoothing_length.push_back(0.0);
+  omega.push_back(1.0);
   source.push_back(own);
   ++fluid_count_;
 }
@@ -81,6 +83,8 @@ void SweParticles::add_ghost(std::uint32_t from, double px, double py, double pu
   initial_area.push_back(initial_area[from]);
   bed.push_back(bed[from]);
   number_density.push_back(number_density[from]);
+  smoothing_length.push_back(smoothing_length[from]);
+  omega.push_back(omega[from]);
   source.push_back(from);
 }
 
@@ -97,6 +101,8 @@ void SweParticles::resize(std::size_t n) {
   initial_area.resize(n);
   bed.resize(n);
   number_density.resize(n);
+  smoothing_length.resize(n);
+  omega.resize(n);
   source.resize(n);
 }
 
@@ -113,7 +119,8 @@ void SweParticles::reorder(std::span<const std::uint32_t> order) {
   std::vector<double> scratch;
   scratch.reserve(order.size());
   for (std::vector<double>* field :
-       {&x, &y, &u, &v, &volume, &depth, &area, &initial_area, &bed, &number_density}) {
+       {&x, &y, &u, &v, &volume, &depth, &area, &initial_area, &bed, &number_density,
+        &smoothing_length, &omega}) {
     permute(*field, order, scratch);
   }
   // Fluid particles are their own source, so the permuted field is simply 0..n-1.
@@ -129,7 +136,8 @@ void SweParticles::remove(std::span<const std::uint8_t> flagged) {
                            " flags for " + std::to_string(fluid_count_) + " particles");
   }
   for (std::vector<double>* field :
-       {&x, &y, &u, &v, &volume, &depth, &area, &initial_area, &bed, &number_density}) {
+       {&x, &y, &u, &v, &volume, &depth, &area, &initial_area, &bed, &number_density,
+        &smoothing_length, &omega}) {
     compact(*field, flagged);
   }
   fluid_count_ = x.size();

@@ -324,19 +324,46 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
 swe::Settings read_numerics(const json* v, double gravity, std::optional<double>& eddy_viscosity,
                             std::optional<double>& shock_viscosity) {
   const Object o(v ? *v : empty_object(), "/numerics",
-                 {"cfl", "alpha_e", "max_area_ratio", "gradient", "min_time_step", "eddy_viscosity",
-                  "shock_viscosity"},
+                 {"scheme", "cfl", "alpha_e", "max_area_ratio", "gradient", "kappa", "kernel",
+                  "dissipation", "min_time_step", "eddy_viscosity", "shock_viscosity"},
                  "an object");
   swe::Settings s;
   s.gravity_m_s2 = gravity;
+  const bool seed =
+      choice(o, "scheme", {"conservative", "seed"},
+             s.scheme == swe::SchemeKind::seed ? "seed" : "conservative") == "seed";
+  s.scheme = seed ? swe::SchemeKind::seed : swe::SchemeKind::conservative;
+  // Each scheme's own knobs are refused under the other, where they would be silently ignored.
+  const auto only_under = [&](std::string_view key, bool allowed, std::string_view scheme) {
+    if (allowed || o.find(key) == nullptr) return;
+    throw ScenarioError(o.path(key), "\"" + std::string(key) + "\" under the " +
+                                         std::string(seed ? "seed" : "conservative") + " scheme",
+                        "no \"" + std::string(key) + "\" here (it sets the " +
+                            std::string(scheme) + " scheme; see \"scheme\")");
+  };
+  for (const auto* key : {"alpha_e", "gradient"}) only_under(key, seed, "seed");
+  for (const auto* key : {"kappa", "kernel", "dissipation"}) only_under(key, !seed, "conservative");
   s.cfl = bounded(o, "cfl", 0.0, true, 1.0, "the Courant number", s.cfl);
   // Below 1 the support holds too few neighbours for a stable gradient; above 3 the smoothing
   // is so wide that the answer no longer resolves the flow. Either is surely a mistake.
   s.alpha_e = bounded(o, "alpha_e", 1.0, false, 3.0,
                       "support radius r_e = alpha_e sqrt(A_max), in particle sizes", s.alpha_e);
+  // The same bounds for h = kappa sqrt(A) (support 2 h): 1 puts 12 neighbours in the support,
+  // 2.5 some 80.
+  s.kappa = bounded(o, "kappa", 1.0, false, 2.5,
+                    "kernel radius h = kappa sqrt(A), in particle sizes", s.kappa);
+  const std::string_view kernel =
+      choice(o, "kernel", {"cubic-spline", "spiky", "wendland-c2"}, "cubic-spline");
+  s.kernel = kernel == "spiky"         ? swe::KernelShape::spiky
+             : kernel == "wendland-c2" ? swe::KernelShape::wendland_c2
+                                       : swe::KernelShape::cubic_spline;
+  // 0 switches it off; above 2 it smears a bore over many particles: surely a mistake.
+  s.dissipation = in_range(o, "dissipation", 0.0, false, 2.0, false,
+                           "the pairwise dissipation coefficient alpha", s.dissipation);
   // Below 1 the bound would cut the areas of water that has merely thinned a little.
   s.max_area_ratio = bounded(o, "max_area_ratio", 1.0, false, 100.0,
-                             "the largest area eq 9 counts, in multiples of A_0", s.max_area_ratio);
+                             "the largest area a kernel radius follows, in multiples of A_0",
+                             s.max_area_ratio);
   const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
   s.gradient =
       gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;

@@ -10,12 +10,12 @@
 namespace swemps::splitting {
 
 MomentMatrix moment_matrix(const particles::SweParticles& p, const neighbors::NeighborList& nl,
-                           const kernels::Spiky<2>& w, std::size_t i) {
+                           const swe::ParticleKernel& w, std::size_t i) {
   MomentMatrix c;
   for (std::uint32_t j : nl.row(i)) {
     const double dx = p.x[j] - p.x[i];
     const double dy = p.y[j] - p.y[i];
-    const double wij = w.w(std::sqrt(dx * dx + dy * dy));
+    const double wij = w.pair_w(p, i, j, std::sqrt(dx * dx + dy * dy));
     c.xx += wij * dx * dx;
     c.xy += wij * dx * dy;
     c.yy += wij * dy * dy;

@@ -33,7 +33,7 @@ void EddyViscosity::apply(StepContext& context) {
       const double dy = p.y[j] - p.y[i];
       const double r2 = dx * dx + dy * dy;
       if (r2 < kCoincident2) continue;
-      const double aw = p.area[j] / p.area[i] * w.w(std::sqrt(r2));
+      const double aw = p.area[j] / p.area[i] * w.pair_w(p, i, j, std::sqrt(r2));
       weight += aw;
       moment += aw * r2;
       lap_u += aw * (p.u[j] - p.u[i]);

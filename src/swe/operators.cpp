@@ -108,33 +108,36 @@ void sum_depth(SweParticles& p, const neighbors::NeighborList& nl, const Kernel&
   });
 }
 
-double number_density_at(const SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w,
-                         std::size_t i) {
+double number_density_at(const SweParticles& p, const neighbors::NeighborList& nl,
+                         const ParticleKernel& w, std::size_t i) {
   double sum = 0.0;
-  for_each_pair_block(p, nl, i, kernel_weights(w), [&](const PairBlock& b) {
-    for (std::size_t k = 0; k < b.index.size(); ++k) sum += p.area[b.index[k]] * b.weight[k];
-  });
+  for (const std::uint32_t j : nl.row(i)) {
+    const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
+    sum += p.area[j] * w.pair_w(p, i, j, distance(dx, dy));
+  }
   return sum / p.area[i];
 }
 
-void sum_number_density(SweParticles& p, const neighbors::NeighborList& nl, const Kernel& w) {
+void sum_number_density(SweParticles& p, const neighbors::NeighborList& nl,
+                        const ParticleKernel& w) {
   parallel_for(p.fluid_count(),
                [&](std::size_t i) { p.number_density[i] = number_density_at(p, nl, w, i); });
 }
 
 std::array<double, 2> mps_gradient_at(const SweParticles& p, const neighbors::NeighborList& nl,
-                                      const Kernel& w, std::size_t i, std::span<const double> phi,
-                                      double number_density) {
+                                      const ParticleKernel& w, std::size_t i,
+                                      std::span<const double> phi, double number_density) {
   constexpr double dimension = 2.0;  // D of eq 6
   double sx = 0.0, sy = 0.0;
-  for_each_pair_block(p, nl, i, kernel_and_gradient_weights(w), [&](const PairBlock& b) {
-    for (std::size_t k = 0; k < b.index.size(); ++k) {
-      const std::uint32_t j = b.index[k];
-      const double f = (phi[j] - phi[i]) * (p.area[j] / p.area[i]) * b.second_weight[k];
-      sx += f * b.dx[k];
-      sy += f * b.dy[k];
-    }
-  });
+  for (const std::uint32_t j : nl.row(i)) {
+    const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
+    const double r2 = dx * dx + dy * dy;
+    if (r2 < coincident_m * coincident_m) continue;  // no direction
+    const double f = (phi[j] - phi[i]) * (p.area[j] / p.area[i]) *
+                     w.pair_w(p, i, j, std::sqrt(r2)) / r2;
+    sx += f * dx;
+    sy += f * dy;
+  }
   if (!(number_density > 0.0)) return {0.0, 0.0};  // an isolated particle feels no gradient
   return {dimension / number_density * sx, dimension / number_density * sy};
 }
@@ -230,24 +233,25 @@ TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, doubl
 namespace {
 
 // Sums eq 7 and the particles' momentum at points, over the fluid particles found through a
-// cell list built once for all points.
+// cell list built once for all points, each particle with its own radius.
 class PointSampler {
  public:
-  PointSampler(const SweParticles& p, const Kernel& w) : p_(p), w_(w) {
+  PointSampler(const SweParticles& p, const ParticleKernel& w) : p_(p), w_(w) {
     const std::size_t n = p.fluid_count();
+    for (std::size_t j = 0; j < n; ++j) reach_ = std::max(reach_, p.smoothing_length[j]);
+    reach_ = ParticleKernel::support(reach_);
     cells_.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
-                 w.support());
+                 reach_);
   }
   // Returns h, and (sum V u w, sum V v w) in qx, qy.
   double sum(double x, double y, double& qx, double& qy) const {
-    const double support = w_.support();
     double h = 0.0;
     qx = 0.0;
     qy = 0.0;
     cells_.for_each_candidate({x, y}, [&](std::uint32_t j) {
       const double r = distance(p_.x[j] - x, p_.y[j] - y);
-      if (r < support) {
-        const double vw = p_.volume[j] * w_.w(r);
+      if (r < reach_) {
+        const double vw = p_.volume[j] * w_.w(r, p_.smoothing_length[j]);
         h += vw;
         qx += vw * p_.u[j];
         qy += vw * p_.v[j];
@@ -266,13 +270,15 @@ class PointSampler {
 
  private:
   const SweParticles& p_;
-  const Kernel& w_;
+  const ParticleKernel& w_;
+  double reach_ = 0.0;  // the largest support
   neighbors::CellList<2> cells_;
 };
 
 }  // namespace
 
-std::vector<double> depth_on_grid(const SweParticles& p, const Kernel& w, const RegularGrid& grid) {
+std::vector<double> depth_on_grid(const SweParticles& p, const ParticleKernel& w,
+                                  const RegularGrid& grid) {
   std::vector<double> depth(grid.nx * grid.ny, 0.0);
   if (p.fluid_count() == 0) return depth;
   const PointSampler sampler(p, w);
@@ -284,12 +290,13 @@ std::vector<double> depth_on_grid(const SweParticles& p, const Kernel& w, const 
   return depth;
 }
 
-PointFields fields_at(const SweParticles& p, const Kernel& w, double x_m, double y_m) {
+PointFields fields_at(const SweParticles& p, const ParticleKernel& w, double x_m, double y_m) {
   if (p.fluid_count() == 0) return {0.0, PointSampler::kNoValue, PointSampler::kNoValue};
   return PointSampler(p, w).at(x_m, y_m);
 }
 
-GridFields fields_on_grid(const SweParticles& p, const Kernel& w, const RegularGrid& grid) {
+GridFields fields_on_grid(const SweParticles& p, const ParticleKernel& w,
+                          const RegularGrid& grid) {
   const std::size_t cells = grid.nx * grid.ny;
   GridFields fields{std::vector<double>(cells, 0.0),
                     std::vector<double>(cells, PointSampler::kNoValue),

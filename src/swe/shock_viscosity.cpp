@@ -25,8 +25,6 @@ void ShockViscosity::apply(StepContext& context) {
   const auto& nl = context.neighbors;
   const auto& w = context.kernel;
   const double g = context.settings.gravity_m_s2;
-  const double radius = 0.5 * w.support();  // r_e
-  const double softening = kSingularity * radius * radius;
   const std::size_t n = p.fluid_count();
   rate_.assign(n, 0.0);
   power_.assign(n, 0.0);
@@ -48,11 +46,14 @@ void ShockViscosity::apply(StepContext& context) {
       if (r == 0.0) continue;  // no direction to act along
       const double c_mean = 0.5 * (ci + celerity_[j]);
       const double h_mean = 0.5 * (p.depth[i] + p.depth[j]);
+      // r_e of the pair (the mean of both radii), and eps r_e^2 of mu_ij.
+      const double radius = 0.5 * (p.smoothing_length[i] + p.smoothing_length[j]);
+      const double softening = kSingularity * radius * radius;
       const double mu = radius * approach / (r2 + softening);
       const double pi = -alpha_ * c_mean * mu / h_mean;  // > 0
       // V_j Pi_ij w'(r) / r: w' < 0, so the pair pushes i back along x_i - x_j, against
       // the approach.
-      const double slope = -w.dw_dr(r);  // > 0
+      const double slope = -w.pair_dw_dr(p, i, j, r);  // > 0
       const double scale = p.volume[j] * pi * slope / r;
       ax += scale * dx;
       ay += scale * dy;

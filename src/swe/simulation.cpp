@@ -120,13 +120,7 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
       walls_(std::move(walls)),
       effects_(std::move(effects)),
       effect_seconds_(effects_.size(), 0.0),
-      // Before the first summation the areas are the lattice areas A_0. A run that starts dry
-      // (all its water comes through an inflow) has no radius yet; 1 m stands in, unused.
-      // No summation has run yet, so no particle is known to be isolated.
-      kernel_(particles_.fluid_count() > 0
-                  ? influence_radius(particles_, settings.alpha_e, settings.max_area_ratio,
-                                     std::numeric_limits<double>::infinity())
-                  : 1.0) {
+      scheme_(make_scheme(settings)) {
   if (particles_.fluid_count() == 0 && effects_.empty())
     throw std::invalid_argument("simulation: no water particles and nothing to add any");
   if (particles_.ghost_count() != 0)
@@ -138,7 +132,7 @@ void Simulation::sort_by_cell() {
   ScopedTimer timer(phase_times_.sort);
   last_sort_step_ = steps_;
   sorted_count_ = particles_.fluid_count();
-  cells_.build(positions(particles_, particles_.fluid_count()), kernel_.support());
+  cells_.build(positions(particles_, particles_.fluid_count()), largest_search_radius());
   order_.assign(cells_.order().begin(), cells_.order().end());
   particles_.reorder(order_);
 }
@@ -268,7 +262,7 @@ void Simulation::keep_snapshot() {
   snapshot_.clear();
   // Room for the fields and a margin for what grows between snapshots, allocated at once: grown
   // piecemeal, the buffer would end up to twice the size it needs.
-  constexpr std::size_t kFields = 10;
+  constexpr std::size_t kFields = 12;
   const std::size_t particles = particles_.fluid_count() + particles_.fluid_count() / 16;
   snapshot_.reserve(kFields * sizeof(double) * particles + 4096);
   write_state(snapshot_);
@@ -291,12 +285,11 @@ void Simulation::write_state(StateWriter& out) const {
        {steps_, particle_steps_, wall_reflections_, last_sort_step_, sorted_count_}) {
     out.count(c);
   }
-  out.number(kernel_.influence_radius());
   out.number(ledger_.initial_m3);
   out.number(ledger_.added_m3);
   out.number(ledger_.removed_m3);
   for (const Field field : {&p.x, &p.y, &p.u, &p.v, &p.volume, &p.depth, &p.area, &p.initial_area,
-                            &p.bed, &p.number_density}) {
+                            &p.bed, &p.number_density, &p.smoothing_length, &p.omega}) {
     out.numbers(std::span<const double>(field->data(), n));
   }
   out.count(effects_.size());
@@ -328,20 +321,20 @@ void Simulation::load_state(StateReader& in) {
   const double time_s = in.number();
   std::array<std::uint64_t, 5> counts{};
   for (auto& c : counts) c = in.count();
-  const double radius = in.number();
   VolumeLedger ledger;
   ledger.initial_m3 = in.number();
   ledger.added_m3 = in.number();
   ledger.removed_m3 = in.number();
-  std::array<std::vector<double>, 10> fields;
+  std::array<std::vector<double>, 12> fields;
   for (auto& f : fields) f = in.numbers();
   const std::size_t n = fields[0].size();
   for (const auto& f : fields) {
     if (f.size() != n)
       throw StateError(in.what() + " is damaged: particle fields differ in length");
   }
-  if (!(radius > 0.0) || !std::isfinite(radius)) {
-    throw StateError(in.what() + " is damaged: influence radius " + number(radius));
+  for (const double h : fields[10]) {
+    if (!(h > 0.0) || !std::isfinite(h))
+      throw StateError(in.what() + " is damaged: smoothing length " + number(h));
   }
   if (in.count() != effects_.size()) {
     throw StateError(in.what() + " was saved with another set of effects than this scene's");
@@ -357,12 +350,15 @@ void Simulation::load_state(StateReader& in) {
   }
 
   particles::SweParticles p;
-  const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density] = fields;
+  const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density, smoothing, omega] =
+      fields;
   for (std::size_t i = 0; i < n; ++i) {
     p.add_fluid(x[i], y[i], u[i], v[i], volume[i], depth[i], initial_area[i], bed[i]);
   }
   p.area = area;
   p.number_density = density;
+  p.smoothing_length = smoothing;
+  p.omega = omega;
   particles_ = std::move(p);
   time_s_ = time_s;
   steps_ = counts[0];
@@ -370,7 +366,6 @@ void Simulation::load_state(StateReader& in) {
   wall_reflections_ = counts[2];
   last_sort_step_ = counts[3];
   sorted_count_ = counts[4];
-  kernel_ = Kernel(radius);
   ledger_ = ledger;
   for (std::size_t k = 0; k < effects_.size(); ++k) {
     StateReader effect_in(effect_states[k],
@@ -384,16 +379,36 @@ void Simulation::load_state(StateReader& in) {
   moved_finite_ = true;
 }
 
+double Simulation::largest_search_radius() const {
+  const std::size_t n = particles_.fluid_count();
+  std::array<double, reduction_chunks> largest{};
+  parallel_chunks(n, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      largest[chunk] = std::max(largest[chunk], particles_.smoothing_length[i]);
+  });
+  return scheme_->search_radius(*std::max_element(largest.begin(), largest.end()));
+}
+
 void Simulation::add_ghosts_and_neighbors() {
+  // Ghosts of every particle within the largest search radius of a wall: a particle's mirror
+  // image is a neighbour of the particles near the wall whose support reaches it.
+  const double reach = largest_search_radius();
   {
     ScopedTimer timer(phase_times_.walls);
-    walls_.add_ghosts(particles_, kernel_.support());
+    walls_.add_ghosts(particles_, reach);
   }
   ScopedTimer timer(phase_times_.neighbors);
   const auto coords = positions(particles_, particles_.size());
-  cells_.build(coords, kernel_.support(), kCellSubdivisions);
-  build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), kernel_.support(),
-                         neighbor_list_);
+  cells_.build(coords, reach, kCellSubdivisions);
+  if (scheme_->uniform_radius()) {
+    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), reach, neighbor_list_);
+    return;
+  }
+  search_radii_.resize(particles_.size());
+  parallel_for(particles_.size(), [&](std::size_t i) {
+    search_radii_[i] = scheme_->search_radius(particles_.smoothing_length[i]);
+  });
+  build_neighbor_list<2>(cells_, coords, search_radii_, particles_.fluid_count(), neighbor_list_);
 }
 
 // update_fields() without the radius, the sort and the sums: the ghosts and neighbour list of
@@ -483,18 +498,21 @@ bool Simulation::sorting_due() const {
 void Simulation::update_fields(bool sort) {
   particles_.drop_ghosts();
   if (particles_.fluid_count() == 0) return;  // dry so far: nothing to sum
-  // eq 9 with the areas of the previous summation: the radius must be known before the
+  // The radii from the areas of the previous summation: they must be known before the
   // neighbours (and so the new areas) can be found.
-  kernel_ = Kernel(influence_radius(particles_, settings_.alpha_e, settings_.max_area_ratio,
-                                    1.0 / kernel_.w(0.0)));
+  scheme_->choose_smoothing_lengths(particles_);
   if (sort) sort_by_cell();
-  add_ghosts_and_neighbors();
-  {
+  // A radius that outgrew its search (the conservative scheme's depth iteration widened it
+  // past the margin) needs the neighbours searched again with the new radii; rare, and never
+  // more than a few times, as each pass starts from the radii the last one reached.
+  for (;;) {
+    add_ghosts_and_neighbors();
     ScopedTimer timer(phase_times_.depth);
-    sum_depth(particles_, neighbor_list_, kernel_);
-    boundaries::GhostWalls::copy_fields_to_ghosts(particles_);  // eq 5 and eq 6 read ghosts' h, A
-    // eq 5's number density is summed with the eq 6 gradient in advance() (one pass for both).
+    if (scheme_->sum_depth(particles_, neighbor_list_)) break;
+    particles_.drop_ghosts();
   }
+  // The force reads the ghosts' depth, area and radius.
+  boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
 }
 
 double Simulation::stable_time_step() {
@@ -532,7 +550,7 @@ double Simulation::effects_time_step_limit() const {
 }
 
 void Simulation::run_effects(Stage stage, double dt_s) {
-  StepContext context{particles_, neighbor_list_, kernel_, accel_x_, accel_y_,
+  StepContext context{particles_, neighbor_list_, scheme_->kernel(), accel_x_, accel_y_,
                       settings_,  ledger_,        time_s_, dt_s};
   if (stage == Stage::topology) {
     context.previous_x = old_x_;
@@ -552,12 +570,8 @@ void Simulation::advance(double dt_s) {
   accel_y_.resize(n);
   {
     ScopedTimer timer(phase_times_.gradient);
-    depth_gradient(settings_.gradient, particles_, neighbor_list_, kernel_, accel_x_, accel_y_);
-    const double g = settings_.gravity_m_s2;
-    parallel_for(n, [&](std::size_t i) {  // eq 2 with z_s = h on a flat bed
-      accel_x_[i] *= -g;
-      accel_y_[i] *= -g;
-    });
+    scheme_->surface_acceleration(particles_, neighbor_list_, settings_.gravity_m_s2, accel_x_,
+                                  accel_y_);
   }
   run_effects(Stage::forces, dt_s);
   {

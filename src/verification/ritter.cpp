@@ -21,7 +21,7 @@ double ritter_velocity(const RitterProblem& p, double x, double t) {
   return 2.0 / 3.0 * (xi + c0);  // eq 14
 }
 
-Profile channel_profile(const particles::SweParticles& p, const swe::Kernel& kernel,
+Profile channel_profile(const particles::SweParticles& p, const swe::ParticleKernel& kernel,
                         const Channel& channel, double dx_m) {
   const auto nx = static_cast<std::size_t>(std::round((channel.x_max_m - channel.x_min_m) / dx_m));
   const auto ny = static_cast<std::size_t>(std::round((channel.y_max_m - channel.y_min_m) / dx_m));

@@ -28,7 +28,7 @@ namespace {
 struct Stepper {
   particles::SweParticles particles;
   neighbors::NeighborList neighbors;
-  kernels::Spiky<2> kernel{0.1};
+  swe::ParticleKernel kernel{swe::KernelShape::spiky};
   std::vector<double> accel_x, accel_y;
   swe::Settings settings;
   swe::VolumeLedger ledger;

@@ -396,7 +396,7 @@ TEST_CASE("Manning friction takes the n under each particle", "[scenario][build]
   p.add_fluid(1.0, 0.0, 0.0, -2.0, 0.5, 0.5, 1.0, 0.0);
   swemps::swe::ManningFriction friction(std::make_shared<const SteppedRoughness>());
   swemps::neighbors::NeighborList neighbors;
-  swemps::kernels::Spiky<2> kernel(1.0);
+  swemps::swe::ParticleKernel kernel(swemps::swe::KernelShape::spiky);
   swemps::swe::Settings settings;
   swemps::swe::VolumeLedger ledger;
   const double dt = 0.1;

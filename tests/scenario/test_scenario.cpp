@@ -66,7 +66,8 @@ std::vector<Broken> broken_scenes() {
          s["numerics"] = {{"zzzzzz", 1}};
        }),
        "/numerics/zzzzzz",
-       "one of the keys cfl, alpha_e, max_area_ratio, gradient, min_time_step, eddy_viscosity"},
+       "one of the keys scheme, cfl, alpha_e, max_area_ratio, gradient, kappa, kernel, dissipation, "
+       "min_time_step, eddy_viscosity"},
       {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
        "found nothing (key missing), expected a number > 0 (seconds)"},
       {"missing domain", edited([](json& s) { s.erase("domain"); }), "/domain", "key missing"},

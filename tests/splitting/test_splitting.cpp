@@ -19,7 +19,9 @@ namespace {
 struct Scene {
   particles::SweParticles p;
   neighbors::NeighborList nl;
-  kernels::Spiky<2> kernel{0.13};
+  // The seed scheme's kernel at one radius for all, r_e = 0.13 m.
+  static constexpr double radius = 0.13;
+  swe::ParticleKernel kernel{swe::KernelShape::spiky};
   std::vector<double> ax, ay;
   swe::Settings settings;
   swe::VolumeLedger ledger;
@@ -28,11 +30,12 @@ struct Scene {
            double area = 0.01, double initial_area = 0.01) {
     p.add_fluid(x, y, u, v, volume, volume / area, initial_area, 0.0);
     p.area.back() = area;
+    p.smoothing_length.back() = radius;
   }
   void link() {
     nl = neighbors::brute_force_neighbors<2>(
         {std::span<const double>(p.x), std::span<const double>(p.y)}, p.fluid_count(),
-        kernel.support());
+        swe::ParticleKernel::support(radius));
     ax.assign(p.fluid_count(), 0.0);
     ay.assign(p.fluid_count(), 0.0);
   }
@@ -57,6 +60,7 @@ Scene lattice_with_gradients(int half_width, double initial_area) {
       const double h = 0.25 + 0.05 * x - 0.02 * y;
       s.p.add_fluid(x, y, 1.0 + 0.5 * x + 0.2 * y, -0.3 + 0.1 * x, h * 0.01, h, initial_area, 0.0);
       s.p.area.back() = 0.01;  // A = V / h
+      s.p.smoothing_length.back() = Scene::radius;
     }
   return s;
 }

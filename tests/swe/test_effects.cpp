@@ -42,9 +42,12 @@ TEST_CASE("bed slope with eq 6 gives -g times the slope on a lattice", "[swe][be
   for (int k = -6; k <= 6; ++k)
     for (int i = -6; i <= 6; ++i)
       p.add_fluid(spacing * i, spacing * k, 0, 0, 0.0025, 0.25, 0.01, 0);
-  const kernels::Spiky<2> w(1.3 * spacing);
+  // The seed scheme's kernel: eq 8 at one radius for all.
+  const swe::ParticleKernel w(swe::KernelShape::spiky);
+  std::fill(p.smoothing_length.begin(), p.smoothing_length.end(), 1.3 * spacing);
   const auto nl = neighbors::brute_force_neighbors<2>(
-      {std::span<const double>(p.x), std::span<const double>(p.y)}, p.fluid_count(), w.support());
+      {std::span<const double>(p.x), std::span<const double>(p.y)}, p.fluid_count(),
+      swe::ParticleKernel::support(1.3 * spacing));
   swe::sum_number_density(p, nl, w);
   std::vector<double> ax(p.fluid_count(), 0.0), ay(p.fluid_count(), 0.0);
   swe::Settings settings;
@@ -76,7 +79,7 @@ TEST_CASE("Manning friction reproduces the closed-form decay exactly", "[swe][fr
   p.add_fluid(1, 0, 0.0, 0.0, 0.001, h, 0.02, 0);      // at rest stays at rest
   p.add_fluid(2, 0, -3.0, 4.0, 0.001, 1e-4, 0.02, 0);  // a film: slowed hard, never reversed
   neighbors::NeighborList nl;
-  const kernels::Spiky<2> w(0.1);
+  const swe::ParticleKernel w(swe::KernelShape::spiky);
   std::vector<double> ax(3), ay(3);
   swe::Settings settings;
   swe::VolumeLedger ledger;

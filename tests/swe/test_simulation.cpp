@@ -182,7 +182,8 @@ TEST_CASE("eq 7 on a lattice and the gridded depth", "[swe]") {
   }
   double h = 0.0;
   for (std::size_t j = 0; j < q.fluid_count(); ++j) {
-    h += q.volume[j] * w.w(std::hypot(q.x[j] - q.x[centre], q.y[j] - q.y[centre]));
+    h += q.volume[j] * w.w(std::hypot(q.x[j] - q.x[centre], q.y[j] - q.y[centre]),
+                          q.smoothing_length[centre]);
   }
   CHECK(q.depth[centre] == Approx(h).epsilon(1e-13));
   CHECK(q.area[centre] == Approx(q.volume[centre] / h).epsilon(1e-13));
@@ -214,7 +215,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
   const double pool_radius = [&] {
     swe::Simulation pool(water, {}, two_boxes(), {});
     pool.advance_to(0.5);
-    return pool.kernel().influence_radius();
+    return pool.particles().smoothing_length[0];  // eq 9: the same for all
   }();
   REQUIRE(pool_radius < 1.1 * swe::Settings{}.alpha_e * spacing);  // about the lattice radius
   SECTION("one droplet does not set the radius") {
@@ -222,7 +223,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     swe::Simulation sim(water, {}, two_boxes(), {});
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);
-    CHECK(sim.kernel().influence_radius() == Approx(pool_radius).epsilon(1e-12));
+    CHECK(sim.particles().smoothing_length[0] == Approx(pool_radius).epsilon(1e-12));
   }
   SECTION("a pair of droplets cannot grow the radius past the bound") {
     // Two particles: A = 1 / (w(0) + w(d)) tends to r_e^2 / 2.5 as r_e grows, and
@@ -234,7 +235,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);
     const double bound = settings.alpha_e * std::sqrt(settings.max_area_ratio * a0);
-    CHECK(sim.kernel().influence_radius() <= bound * (1 + 1e-12));
-    CHECK(sim.kernel().influence_radius() > pool_radius);
+    CHECK(sim.particles().smoothing_length[0] <= bound * (1 + 1e-12));
+    CHECK(sim.particles().smoothing_length[0] > pool_radius);
   }
 }

@@ -38,8 +38,8 @@ class GhostWalls {
   // which particles are near which walls for keep_inside(). Requires no ghosts present.
   void add_ghosts(particles::SweParticles& p, double reach);
 
-  // Copies depth, area, number density and bed of each ghost's fluid particle (after the
-  // depth summation has set them).
+  // Copies depth, area, number density, bed, smoothing length and grad-h factor of each
+  // ghost's fluid particle (after the depth summation has set them).
   static void copy_fields_to_ghosts(particles::SweParticles& p);
 
   // After a move from (old_x, old_y): reflects back every near-wall particle whose path

@@ -35,6 +35,30 @@ class Spiky {
     }
   }
 
+  static constexpr double support_ratio = 2.0;  // support / r_e
+
+  // eq 8 in the form f(q) sigma_D / r_e^D with q = r / r_e, for a radius given per call
+  // (the conservative scheme's per-particle radius): f(q) = (2 - q)^3.
+  static constexpr double sigma() {
+    if constexpr (Dim == 1) return 1.0 / 8.0;
+    if constexpr (Dim == 2) return 5.0 / (16.0 * std::numbers::pi);
+    return 15.0 / (64.0 * std::numbers::pi);
+  }
+  static double shape(double q) {
+    const double a = q < 2.0 ? 2.0 - q : 0.0;
+    return a * a * a;
+  }
+  static double shape_slope(double q) {
+    const double a = q < 2.0 ? 2.0 - q : 0.0;
+    return -3.0 * a * a;
+  }
+  static double w(double r, double h) { return sigma() / power(h) * shape(r / h); }
+  static double dw_dr(double r, double h) { return sigma() / (power(h) * h) * shape_slope(r / h); }
+  static double dw_dh(double r, double h) {
+    const double q = r / h;
+    return -sigma() / (power(h) * h) * (Dim * shape(q) + q * shape_slope(q));
+  }
+
   double influence_radius() const { return influence_radius_; }
   // Distance beyond which w = 0.
   double support() const { return support_; }
@@ -60,6 +84,11 @@ class Spiky {
   }
 
  private:
+  static double power(double h) {
+    if constexpr (Dim == 1) return h;
+    if constexpr (Dim == 2) return h * h;
+    return h * h * h;
+  }
   double influence_radius_;
   double inverse_radius_;
   double support_;

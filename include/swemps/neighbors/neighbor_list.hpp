@@ -32,6 +32,15 @@ template <int Dim>
 void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
                          std::size_t target_count, double radius, NeighborList& out);
 
+// Rows for points that each have their own radius (radii: one per binned point, ghosts
+// included): j is a neighbour of target i when |x_i - x_j| < max(radius_i, radius_j), so the
+// rows are symmetric among targets and hold every pair either particle's kernel reaches.
+// `cells` must have been built with a cell width >= the largest radius.
+template <int Dim>
+void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
+                         std::span<const double> radii, std::size_t target_count,
+                         NeighborList& out);
+
 // The O(N^2) reference the fast path is tested against; rows sorted by index.
 template <int Dim>
 NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t target_count,

@@ -21,6 +21,12 @@ class SweParticles {
   std::vector<double> initial_area;    // A_0, the area a particle was created with
   std::vector<double> bed;             // z_b at the particle
   std::vector<double> number_density;  // n, eq 5
+  // The particle's own kernel radius H (m; support 2 H): r_e of eq 9, the same for all under
+  // the seed scheme, kappa sqrt(A) under the conservative scheme. 0 until the first summation.
+  std::vector<double> smoothing_length;
+  // The grad-h factor Omega = d(summed depth)/d(depth) of the conservative scheme (1 when the
+  // radius does not follow the depth; docs/method.md, "The conservative scheme").
+  std::vector<double> omega;
   // For ghosts: the fluid particle mirrored; for fluid particles: its own index.
   std::vector<std::uint32_t> source;
 

@@ -49,7 +49,7 @@ struct MomentMatrix {
 };
 
 MomentMatrix moment_matrix(const particles::SweParticles& p, const neighbors::NeighborList& nl,
-                           const kernels::Spiky<2>& w, std::size_t i);
+                           const swe::ParticleKernel& w, std::size_t i);
 
 // Unit eigenvector of C for the chosen axis: the larger eigenvalue (eq 11 / appendix A) or the
 // smaller one. For an isotropic C every direction qualifies; x (major) and y (minor) are

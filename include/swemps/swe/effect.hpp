@@ -9,9 +9,9 @@
 #include <string>
 #include <string_view>
 
-#include "swemps/kernels/spiky.hpp"
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/particles/swe_particles.hpp"
+#include "swemps/swe/particle_kernel.hpp"
 #include "swemps/swe/settings.hpp"
 #include "swemps/swe/state_record.hpp"
 
@@ -37,7 +37,8 @@ enum class Stage {
 struct StepContext {
   particles::SweParticles& particles;
   const neighbors::NeighborList& neighbors;  // valid in the resolution, forces and velocity stages
-  const kernels::Spiky<2>& kernel;
+  // The scheme's kernel: pair weights from the particles' own radii (smoothing_length).
+  const ParticleKernel& kernel;
   std::span<double> accel_x, accel_y;  // m s^-2, fluid particles; forces stage
   const Settings& settings;
   VolumeLedger& ledger;

@@ -11,6 +11,7 @@
 #include "swemps/kernels/spiky.hpp"
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/particles/swe_particles.hpp"
+#include "swemps/swe/particle_kernel.hpp"
 #include "swemps/swe/settings.hpp"
 
 namespace swemps::swe {
@@ -31,16 +32,18 @@ void sum_depth(particles::SweParticles& p, const neighbors::NeighborList& nl, co
 
 // eq 5: n_i = sum_{j != i} (A_j / A_i) w_ij.
 void sum_number_density(particles::SweParticles& p, const neighbors::NeighborList& nl,
-                        const Kernel& w);
+                        const ParticleKernel& w);
 
-// eq 5 at one fluid particle.
+// eq 5 at one fluid particle, with the pair weights of any scheme's kernel (for the seed
+// scheme, eq 8 at the common radius).
 double number_density_at(const particles::SweParticles& p, const neighbors::NeighborList& nl,
-                         const Kernel& w, std::size_t i);
+                         const ParticleKernel& w, std::size_t i);
 
 // eq 6 at one fluid particle for any per-particle field phi (indexed like the particles,
-// ghosts included), given that particle's number density n_i (eq 5).
+// ghosts included), given that particle's number density n_i (eq 5), with the pair weights of
+// any scheme's kernel.
 std::array<double, 2> mps_gradient_at(const particles::SweParticles& p,
-                                      const neighbors::NeighborList& nl, const Kernel& w,
+                                      const neighbors::NeighborList& nl, const ParticleKernel& w,
                                       std::size_t i, std::span<const double> phi,
                                       double number_density);
 
@@ -58,13 +61,14 @@ struct TimeStepLimit {
 };
 TimeStepLimit stable_time_step(const particles::SweParticles& p, double gravity_m_s2, double cfl);
 
-// Depth at arbitrary points, h(x) = sum_j V_j w(|x - x_j|), over the fluid particles: the
-// same summation as eq 7, so the field integrates to the particles' volume.
+// Depth at arbitrary points, h(x) = sum_j V_j W(|x - x_j|, h_j), over the fluid particles,
+// each with its own radius: the summation of eq 7 (and of the conservative scheme), so the
+// field integrates to the particles' volume.
 struct RegularGrid {
   double x0, y0, dx, dy;  // first cell centre and spacing, m
   std::size_t nx, ny;
 };
-std::vector<double> depth_on_grid(const particles::SweParticles& p, const Kernel& w,
+std::vector<double> depth_on_grid(const particles::SweParticles& p, const ParticleKernel& w,
                                   const RegularGrid& grid);
 
 // Depth and depth-averaged velocity at a point: h from the summation above, and
@@ -73,13 +77,14 @@ std::vector<double> depth_on_grid(const particles::SweParticles& p, const Kernel
 struct PointFields {
   double depth_m = 0.0, u_m_s = 0.0, v_m_s = 0.0;
 };
-PointFields fields_at(const particles::SweParticles& p, const Kernel& w, double x_m, double y_m);
+PointFields fields_at(const particles::SweParticles& p, const ParticleKernel& w, double x_m,
+                      double y_m);
 
 // The same at every cell centre of a grid; ny * nx values each, x fastest.
 struct GridFields {
   std::vector<double> depth, u, v;
 };
-GridFields fields_on_grid(const particles::SweParticles& p, const Kernel& w,
+GridFields fields_on_grid(const particles::SweParticles& p, const ParticleKernel& w,
                           const RegularGrid& grid);
 
 }  // namespace swemps::swe

@@ -2,20 +2,21 @@
 // The shallow-water MPS simulation (method.md section 1).
 //
 // Water is a set of particles moving in the horizontal plane. Each carries a fixed volume
-// V; its depth h comes from summing its neighbours' volumes with the spiky kernel (eq 7), its
-// area is A = V / h, and it accelerates down the gradient of the water surface (eq 2).
-// Walls are mirrored ghost particles. Everything else a scene may ask for (bed, friction,
+// V; its depth h comes from summing its neighbours' volumes with a kernel, its area is
+// A = V / h, and it accelerates down the gradient of the water surface (eq 2). How the depth
+// is summed and the force taken is the Scheme's (scheme.hpp: the seed paper's eqs 5-9, or the
+// conservative scheme). Walls are mirrored ghost particles. Everything else a scene may ask for (bed, friction,
 // splitting, inflow, outflow) is an Effect, called at its stage.
 //
 // One step, and why in this order:
-//  1. refresh(): sort fluid particles by cell every few steps (neighbours near in memory),
-//     take r_e from the largest area of the previous summation (eq 9: one radius for all, so
-//     forces are symmetric), add wall ghosts, build the neighbour list, sum depth (eq 7) and
-//     A = V/h, copy them to the ghosts. Then resolution-stage effects (splitting); if they
+//  1. refresh(): the scheme chooses each particle's radius from the previous summation (the
+//     seed scheme: eq 9, one for all), sort fluid particles by cell every few steps
+//     (neighbours near in memory), add wall ghosts, build the neighbour list, sum depth and
+//     A = V/h (searching again if a radius outgrew its search), copy them to the ghosts. Then resolution-stage effects (splitting); if they
 //     changed the particles, all of this once more. refresh() is also what output calls, so the
 //     fields written at time t are those the next step uses.
 //  2. dt from CFL (eq 13) on the fresh depth and area.
-//  3. a = -g grad h (the chosen variant), then forces-stage effects add to a.
+//  3. a = -g grad h and the scheme's dissipation, then forces-stage effects add to a.
 //  4. u += dt a (symplectic Euler: the new velocity moves the particle), then velocity-stage
 //     effects (semi-implicit friction acts on the updated velocity).
 //  5. x += dt u; particles whose path crossed a wall are reflected back.
@@ -41,6 +42,7 @@
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/swe/effect.hpp"
 #include "swemps/swe/operators.hpp"
+#include "swemps/swe/scheme.hpp"
 #include "swemps/swe/state_record.hpp"
 
 namespace swemps::swe {
@@ -126,7 +128,9 @@ class Simulation {
   std::size_t steps() const { return steps_; }
   std::size_t particle_steps() const { return particle_steps_; }
   const particles::SweParticles& particles() const { return particles_; }
-  const Kernel& kernel() const { return kernel_; }
+  const Scheme& scheme() const { return *scheme_; }
+  // The scheme's kernel; the radii are the particles' smoothing_length.
+  const ParticleKernel& kernel() const { return scheme_->kernel(); }
   // The neighbour rows of the last refresh (fluid particles only; ghosts have no row).
   const neighbors::NeighborList& neighbor_list() const { return neighbor_list_; }
   const Settings& settings() const { return settings_; }
@@ -138,8 +142,8 @@ class Simulation {
   const PhaseTimes& phase_times() const { return phase_times_; }
   std::vector<EffectTime> effect_times() const;
 
-  // Everything the next step depends on: the fluid particles with all their fields, time,
-  // step count, the influence radius (eq 9 takes the next one from these areas), when the
+  // Everything the next step depends on: the fluid particles with all their fields (their
+  // radii included: the next summation starts from them), time, step count, when the
   // particles were last sorted, the volume ledger and each effect's own state. Refreshes
   // first, so the record is of a fresh state (what the next step starts from).
   void save_state(StateWriter& out);
@@ -152,8 +156,10 @@ class Simulation {
 
  private:
   // refresh() without the resolution stage; `sort`: sort the particles by cell first.
-  // Wall ghosts for the current radius, then the neighbour list over fluid and ghosts.
+  // Wall ghosts for the current radii, then the neighbour list over fluid and ghosts.
   void add_ghosts_and_neighbors();
+  // The largest search radius of the fluid particles (the scheme's, for their radii).
+  double largest_search_radius() const;
   void update_fields(bool sort);
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
   // update_fields() that turns the cell lists' refusal of a non-finite coordinate into one.
@@ -180,7 +186,8 @@ class Simulation {
   boundaries::GhostWalls walls_;
   std::vector<std::unique_ptr<Effect>> effects_;
   std::vector<double> effect_seconds_;
-  Kernel kernel_;
+  std::unique_ptr<Scheme> scheme_;
+  std::vector<double> search_radii_;  // per particle, ghosts included (non-uniform schemes)
   neighbors::CellList<2> cells_;
   neighbors::NeighborList neighbor_list_;
   std::vector<double> accel_x_, accel_y_, old_x_, old_y_;

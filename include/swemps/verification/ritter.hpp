@@ -35,7 +35,7 @@ struct Channel {
 // The depth along a channel: eq 7 evaluated at the cell centres of a grid of square cells of
 // side dx_m covering the channel, averaged across it (y). A grid finer than the particles
 // (dx = spacing / 4 in the verification) samples the summed depth between them too.
-Profile channel_profile(const particles::SweParticles& p, const swe::Kernel& kernel,
+Profile channel_profile(const particles::SweParticles& p, const swe::ParticleKernel& kernel,
                         const Channel& channel, double dx_m);
 
 struct RitterErrors {
