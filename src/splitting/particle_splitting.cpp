@@ -152,6 +152,8 @@ void ParticleSplitting::apply(swe::StepContext& context) {
     p.volume[i] = a.volume;
     p.depth[i] = a.depth;
     p.area[i] = plan.area;
+    // Each daughter gets the radius of its own area: 0 asks the scheme to choose it.
+    p.smoothing_length[i] = 0.0;
     const Daughter& b = plan.b;
     p.add_fluid(b.x, b.y, b.u, b.v, b.volume, b.depth, p.initial_area[i], p.bed[i]);
     p.area.back() = plan.area;

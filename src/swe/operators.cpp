@@ -232,12 +232,18 @@ TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, doubl
 
 namespace {
 
-// Sums eq 7 and the particles' momentum at points, over the fluid particles found through a
-// cell list built once for all points, each particle with its own radius.
+// Sums eq 7 and the particles' momentum at points, over the particles found through a cell
+// list built once for all points, each particle with its own radius. Wall ghosts, when the
+// state has them (a refreshed simulation does), count for the points on their fluid
+// particle's side of the wall: a ghost mirrored across a wall is nearer to its particle than
+// to itself exactly there (the wall is the perpendicular bisector of the two). Without them a
+// point next to a wall would miss the half of its kernel that lies behind the wall, and read
+// half the depth; with them, uniform water reads its depth up to the wall, and the field still
+// integrates to the particles' volume over the fluid side.
 class PointSampler {
  public:
   PointSampler(const SweParticles& p, const ParticleKernel& w) : p_(p), w_(w) {
-    const std::size_t n = p.fluid_count();
+    const std::size_t n = p.size();
     for (std::size_t j = 0; j < n; ++j) reach_ = std::max(reach_, p.smoothing_length[j]);
     reach_ = ParticleKernel::support(reach_);
     cells_.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
@@ -250,6 +256,10 @@ class PointSampler {
     qy = 0.0;
     cells_.for_each_candidate({x, y}, [&](std::uint32_t j) {
       const double r = distance(p_.x[j] - x, p_.y[j] - y);
+      if (j >= p_.fluid_count()) {
+        const std::uint32_t i = p_.source[j];
+        if (!(distance(p_.x[i] - x, p_.y[i] - y) < r)) return;  // the point is behind the wall
+      }
       if (r < reach_) {
         const double vw = p_.volume[j] * w_.w(r, p_.smoothing_length[j]);
         h += vw;

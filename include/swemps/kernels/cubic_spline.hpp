@@ -15,10 +15,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "swemps/kernels/scaled_kernel.hpp"
+
 namespace swemps::kernels {
 
 template <int Dim>
-class CubicSpline {
+class CubicSpline : public ScaledKernel<CubicSpline<Dim>, Dim> {
   static_assert(Dim >= 1 && Dim <= 3, "cubic spline kernel defined for 1, 2 and 3 dimensions");
 
  public:
@@ -49,24 +51,12 @@ class CubicSpline {
   }
   double influence_radius() const { return h_; }
   double support() const { return support_ratio * h_; }
+  using ScaledKernel<CubicSpline<Dim>, Dim>::w;
+  using ScaledKernel<CubicSpline<Dim>, Dim>::dw_dr;
   double w(double r) const { return w(r, h_); }
   double dw_dr(double r) const { return dw_dr(r, h_); }
 
-  // W, dW/dr and dW/dh for a radius given per call.
-  static double w(double r, double h) { return sigma() / power(h) * shape(r / h); }
-  static double dw_dr(double r, double h) { return sigma() / (power(h) * h) * shape_slope(r / h); }
-  // dW/dh = -(sigma / h^(D+1)) (D f(q) + q f'(q)).
-  static double dw_dh(double r, double h) {
-    const double q = r / h;
-    return -sigma() / (power(h) * h) * (Dim * shape(q) + q * shape_slope(q));
-  }
-
  private:
-  static double power(double h) {
-    if constexpr (Dim == 1) return h;
-    if constexpr (Dim == 2) return h * h;
-    return h * h * h;
-  }
   double h_;
 };
 

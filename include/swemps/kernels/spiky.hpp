@@ -7,10 +7,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "swemps/kernels/scaled_kernel.hpp"
+
 namespace swemps::kernels {
 
 template <int Dim>
-class Spiky {
+class Spiky : public ScaledKernel<Spiky<Dim>, Dim> {
   static_assert(Dim >= 1 && Dim <= 3, "spiky kernel defined for 1, 2 and 3 dimensions");
 
  public:
@@ -38,7 +40,7 @@ class Spiky {
   static constexpr double support_ratio = 2.0;  // support / r_e
 
   // eq 8 in the form f(q) sigma_D / r_e^D with q = r / r_e, for a radius given per call
-  // (the conservative scheme's per-particle radius): f(q) = (2 - q)^3.
+  // (ScaledKernel; the conservative scheme's per-particle radius): f(q) = (2 - q)^3.
   static constexpr double sigma() {
     if constexpr (Dim == 1) return 1.0 / 8.0;
     if constexpr (Dim == 2) return 5.0 / (16.0 * std::numbers::pi);
@@ -52,12 +54,8 @@ class Spiky {
     const double a = q < 2.0 ? 2.0 - q : 0.0;
     return -3.0 * a * a;
   }
-  static double w(double r, double h) { return sigma() / power(h) * shape(r / h); }
-  static double dw_dr(double r, double h) { return sigma() / (power(h) * h) * shape_slope(r / h); }
-  static double dw_dh(double r, double h) {
-    const double q = r / h;
-    return -sigma() / (power(h) * h) * (Dim * shape(q) + q * shape_slope(q));
-  }
+  using ScaledKernel<Spiky<Dim>, Dim>::w;
+  using ScaledKernel<Spiky<Dim>, Dim>::dw_dr;
 
   double influence_radius() const { return influence_radius_; }
   // Distance beyond which w = 0.
@@ -84,11 +82,6 @@ class Spiky {
   }
 
  private:
-  static double power(double h) {
-    if constexpr (Dim == 1) return h;
-    if constexpr (Dim == 2) return h * h;
-    return h * h * h;
-  }
   double influence_radius_;
   double inverse_radius_;
   double support_;

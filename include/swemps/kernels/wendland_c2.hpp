@@ -12,10 +12,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "swemps/kernels/scaled_kernel.hpp"
+
 namespace swemps::kernels {
 
 template <int Dim>
-class WendlandC2 {
+class WendlandC2 : public ScaledKernel<WendlandC2<Dim>, Dim> {
   static_assert(Dim == 2 || Dim == 3, "Wendland C2 kernel defined here for 2 and 3 dimensions");
 
  public:
@@ -44,18 +46,12 @@ class WendlandC2 {
   }
   double influence_radius() const { return h_; }
   double support() const { return support_ratio * h_; }
+  using ScaledKernel<WendlandC2<Dim>, Dim>::w;
+  using ScaledKernel<WendlandC2<Dim>, Dim>::dw_dr;
   double w(double r) const { return w(r, h_); }
   double dw_dr(double r) const { return dw_dr(r, h_); }
 
-  static double w(double r, double h) { return sigma() / power(h) * shape(r / h); }
-  static double dw_dr(double r, double h) { return sigma() / (power(h) * h) * shape_slope(r / h); }
-  static double dw_dh(double r, double h) {
-    const double q = r / h;
-    return -sigma() / (power(h) * h) * (Dim * shape(q) + q * shape_slope(q));
-  }
-
  private:
-  static double power(double h) { return Dim == 2 ? h * h : h * h * h; }
   double h_;
 };
 
