@@ -4,8 +4,8 @@
 Reads the CSV table a study writes and draws one PNG with two panels:
 
 - left: the error (fan L1 / h0 by default) against wall time, log-log. Each combination of
-  the knobs other than spacing (splitting, gradient, and cfl and alpha_e when they were
-  swept) has its own colour and marker, with a line joining its spacings. The Pareto front
+  the knobs other than spacing (splitting, scheme, gradient, kappa, dissipation, cfl and
+  alpha_e, those that were swept) has its own colour and marker, with a line joining its spacings. The Pareto front
   (runs no other run beats on both wall time and error) is a dashed step line with its runs
   circled.
 - right: the same error against particle spacing, log-log, with the observed order of
@@ -27,7 +27,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 # The knobs that, with the spacing, define a run; a series is one setting of all but spacing.
-SERIES_KNOBS = ["splitting_threshold", "gradient", "cfl", "alpha_e"]
+# Tables written before the scheme knobs have no scheme, kappa or dissipation column; a
+# scheme's own knobs are empty in the other scheme's rows.
+SERIES_KNOBS = ["splitting_threshold", "scheme", "gradient", "kappa", "dissipation", "cfl",
+                "alpha_e"]
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "*"]
 
 
@@ -46,20 +49,22 @@ def read_table(path):
 
 def swept_knobs(rows):
     """The series knobs that take more than one value in the table: only they go in labels."""
-    return [k for k in SERIES_KNOBS if len({r[k] for r in rows}) > 1]
+    return [k for k in SERIES_KNOBS if len({r.get(k, "") for r in rows}) > 1]
 
 
 def series_key(row):
-    return tuple(row[k] for k in SERIES_KNOBS)
+    return tuple(row.get(k, "") for k in SERIES_KNOBS)
 
 
 def series_label(row, knobs):
     parts = []
     for k in knobs:
+        if not row.get(k, ""):
+            continue  # a knob of the other scheme
         if k == "splitting_threshold":
             threshold = number(row[k])
             parts.append("no splitting" if math.isnan(threshold) else f"splitting {threshold:g}")
-        elif k == "gradient":
+        elif k in ("scheme", "gradient"):
             parts.append(row[k])
         else:
             parts.append(f"{k} {row[k]}")
@@ -146,8 +151,8 @@ def plot_convergence(ax, series, error_name):
 def report(rows, series, error):
     for r in rows:
         if r["status"] != "ok":
-            print(f"run {r['run']} (spacing {r['spacing_m']}, "
-                  f"splitting {r['splitting_threshold']}, {r['gradient']}, cfl {r['cfl']}, alpha_e {r['alpha_e']}): {r['status']}: "
+            knobs = ", ".join(f"{k} {r[k]}" for k in SERIES_KNOBS if r.get(k, ""))
+            print(f"run {r['run']} (spacing {r['spacing_m']}, {knobs}): {r['status']}: "
                   f"{r['message']}")
     for label, points in series.values():
         orders = observed_orders([p[0] for p in points], [p[2] for p in points])

@@ -217,7 +217,16 @@ double expected_cost(const scenario::Scenario& scene) {
 
 std::vector<PlannedRun> plan_runs(const study::Study& study, const scenario::Scenario& base) {
   std::vector<PlannedRun> runs;
-  for (const study::RunKnobs& knobs : study::expand(study.sweep)) {
+  std::vector<study::RunKnobs> expanded;
+  try {
+    expanded = study::expand(study.sweep, base.numerics.scheme);
+  } catch (const std::invalid_argument& e) {
+    throw scenario::ScenarioError("/sweep", e.what(),
+                                  "knobs of the schemes the runs use (the \"scheme\" knob, "
+                                  "or else the scene's)",
+                                  "study");
+  }
+  for (const study::RunKnobs& knobs : expanded) {
     PlannedRun run{knobs, base, 1.0};
     study::apply(knobs, run.scene);
     run.expected_cost = expected_cost(run.scene);
@@ -342,8 +351,8 @@ std::string text_field(const std::string& text) {
 }
 
 std::vector<std::string> table_columns() {
-  std::vector<std::string> columns{"run",      "spacing_m", "splitting_threshold",
-                                   "gradient", "cfl",       "alpha_e"};
+  std::vector<std::string> columns{"run",   "spacing_m",   "splitting_threshold", "scheme",
+                                   "gradient", "kappa", "dissipation", "cfl",   "alpha_e"};
   for (const auto& f : kCountFields) columns.emplace_back(f.name);
   columns.emplace_back("peak_memory_mib");
   for (const auto& f : kErrorFields) columns.emplace_back(f.name);
@@ -357,13 +366,18 @@ std::vector<std::string> table_columns() {
 std::string table_line(std::size_t index, const PlannedRun& run, const Row& row) {
   const auto& scene = run.scene;
   const RunRecord& r = row.record;
+  const bool seed = scene.numerics.scheme == swe::SchemeKind::seed;
   std::vector<std::string> fields{
       std::to_string(index),
       number_text(study::finest_spacing(scene)),
       number_text(scene.splitting ? scene.splitting->area_ratio_threshold : kNaN),
-      study::gradient_name(scene.numerics.gradient),
+      study::scheme_name(scene.numerics.scheme),
+      // A scheme's own knobs are blank in the other scheme's rows.
+      seed ? study::gradient_name(scene.numerics.gradient) : std::string(),
+      seed ? std::string() : number_text(scene.numerics.kappa),
+      seed ? std::string() : number_text(scene.numerics.dissipation),
       number_text(scene.numerics.cfl),
-      number_text(scene.numerics.alpha_e)};
+      seed ? number_text(scene.numerics.alpha_e) : std::string()};
   for (const auto& f : kCountFields) fields.push_back(number_text(r.*f.member));
   fields.push_back(number_text(row.peak_memory_mib));
   for (const auto& f : kErrorFields) fields.push_back(number_text(r.*f.member));

@@ -422,7 +422,13 @@ BuiltScene build(const Scenario& scene) {
   const auto* plane = std::get_if<PlaneBedSpec>(&scene.bed);
   const bool level = plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0;
   if (terrain.bed && !level) {
-    effects.push_back(std::make_unique<swe::BedSlope>(terrain.bed, scene.numerics.gradient));
+    // The bed term pairs with the depth force: eq 6 on z_b beside the seed's eq 6 depth
+    // gradient; the exact bed gradient beside a force that is the exact gradient of the summed
+    // depth (the seed's summation variant and the conservative scheme).
+    const swe::GradientVariant bed_gradient = scene.numerics.scheme == swe::SchemeKind::seed
+                                                  ? scene.numerics.gradient
+                                                  : swe::GradientVariant::summation;
+    effects.push_back(std::make_unique<swe::BedSlope>(terrain.bed, bed_gradient));
   }
   // A force: it acts with the depth gradient and the bed slope, before friction (velocity stage).
   if (scene.eddy_viscosity_m2_s) {

@@ -474,7 +474,8 @@ void forbid(const Object& o, std::string_view key, std::string_view form,
 
 ParsedWater read_water(const json& v, const std::string& path,
                        const std::optional<Rectangle>& domain, bool has_bed,
-                       const std::filesystem::path& base_dir, double default_spacing_m) {
+                       const std::filesystem::path& base_dir, double default_spacing_m,
+                       swe::SchemeKind scheme) {
   const Object o(v, path,
                  {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth",
                   "velocity", "spacing", "volumes", "rectangle", "polygon"},
@@ -544,10 +545,20 @@ ParsedWater read_water(const json& v, const std::string& path,
     }
   }
 
-  // Water whose depth comes from the terrain starts at rest only when balanced.
-  const std::string_view volumes =
-      choice(o, "volumes", {"geometric", "balanced"}, form == "depth" ? "geometric" : "balanced");
+  // Under the seed scheme water whose depth comes from the terrain starts at rest only when
+  // balanced, as eq 7 sums some 15 % too deep. The conservative scheme sums lattice water to
+  // its true depth, and balancing has no fixed point there (a particle's own volume sets its
+  // radius, not its depth): its water keeps the volume the terrain gives it.
+  const bool seed = scheme == swe::SchemeKind::seed;
+  const std::string_view volumes = choice(o, "volumes", {"geometric", "balanced"},
+                                          form == "depth" || !seed ? "geometric" : "balanced");
   w.volumes = volumes == "balanced" ? VolumeRule::balanced : VolumeRule::geometric;
+  if (w.volumes == VolumeRule::balanced && !seed) {
+    throw ScenarioError(o.path("volumes"), "\"balanced\" under the conservative scheme",
+                        "\"geometric\" or no \"volumes\" (balancing corrects the seed scheme's "
+                        "eq 7 depth; the conservative scheme sums lattice water to its true "
+                        "depth; see \"scheme\")");
+  }
   parsed.volumes_given = o.find("volumes") != nullptr;
   return parsed;
 }
@@ -557,14 +568,15 @@ ParsedWater read_water(const json& v, const std::string& path,
 // spacing is the "ns" block's); 0: each body must give one.
 std::vector<WaterBody> read_waters(const json* v, const std::optional<Rectangle>& domain,
                                    bool has_bed, const std::filesystem::path& base_dir,
-                                   double default_spacing_m) {
+                                   double default_spacing_m, swe::SchemeKind scheme) {
   const std::string path = "/water";
   if (v == nullptr) return {};
   if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of water bodies");
   std::vector<ParsedWater> parsed;
   for (std::size_t i = 0; i < v->size(); ++i) {
     parsed.push_back(
-        read_water((*v)[i], element_path(path, i), domain, has_bed, base_dir, default_spacing_m));
+        read_water((*v)[i], element_path(path, i), domain, has_bed, base_dir, default_spacing_m,
+                   scheme));
   }
   // Balancing solves for all particles at once (their depths are sums over neighbours, across
   // bodies too), so it is one choice for the whole scene.
@@ -1413,7 +1425,8 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   const bool has_bed = !std::holds_alternative<std::monostate>(s.bed);
   // Model ns fills its tank on the "ns" lattice; a water body's own spacing is then optional.
   const double default_spacing_m = s.model == Model::ns ? s.ns->settings.spacing_m : 0.0;
-  s.water = read_waters(o.find("water"), domain, has_bed, base_dir, default_spacing_m);
+  s.water = read_waters(o.find("water"), domain, has_bed, base_dir, default_spacing_m,
+                        s.numerics.scheme);
   default_tank_height(s);
   s.walls = read_walls(o.find("walls"));
   s.manning_n = read_friction(o.find("friction"), base_dir);

@@ -108,6 +108,11 @@ study::SplittingChoice read_splitting_choice(const json& v, const std::string& p
   return {threshold(v, path)};
 }
 
+swe::SchemeKind read_scheme(const json& v, const std::string& path) {
+  return word(v, path, {"seed", "conservative"}) == "seed" ? swe::SchemeKind::seed
+                                                           : swe::SchemeKind::conservative;
+}
+
 swe::GradientVariant read_gradient(const json& v, const std::string& path) {
   return word(v, path, {"mps", "summation"}) == "summation" ? swe::GradientVariant::summation
                                                             : swe::GradientVariant::mps;
@@ -116,10 +121,11 @@ swe::GradientVariant read_gradient(const json& v, const std::string& path) {
 study::Sweep read_sweep(const Object& root) {
   const json* v = root.find("sweep");
   const std::string expected =
-      "an object of knob value lists (spacing, splitting, gradient, "
-      "cfl, alpha_e)";
+      "an object of knob value lists (spacing, splitting, scheme, gradient, kappa, "
+      "dissipation, cfl, alpha_e)";
   if (v == nullptr) throw ScenarioError(root.path("sweep"), kMissing, expected);
-  const Object o(*v, root.path("sweep"), {"spacing", "splitting", "gradient", "cfl", "alpha_e"},
+  const Object o(*v, root.path("sweep"), {"spacing", "splitting", "scheme", "gradient", "kappa", "dissipation", "cfl",
+                  "alpha_e"},
                  expected);
   study::Sweep s;
   // Spacings beyond a kilometre are surely a typo for metres.
@@ -127,8 +133,14 @@ study::Sweep read_sweep(const Object& root) {
                                   number_in(0.0, false, 1e3, "the particle spacing in metres"));
   s.splitting = read_axis<study::SplittingChoice>(
       o, "splitting", "null (no splitting) or area-ratio thresholds", read_splitting_choice);
+  s.scheme = read_axis<swe::SchemeKind>(o, "scheme", "\"seed\" or \"conservative\"", read_scheme);
   s.gradient =
       read_axis<swe::GradientVariant>(o, "gradient", "\"mps\" or \"summation\"", read_gradient);
+  // The scene file's bounds (docs/scenario.md, numerics).
+  s.kappa = read_axis<double>(o, "kappa", "kernel radii in particle sizes",
+                              number_in(1.0, true, 2.5, "h = kappa sqrt(A)"));
+  s.dissipation = read_axis<double>(o, "dissipation", "dissipation coefficients",
+                                    number_in(0.0, true, 2.0, "the pairwise dissipation alpha"));
   // Unlike a scene, a study may push the Courant number past 1: finding where runs break
   // down is one thing a study is for.
   s.cfl = read_axis<double>(o, "cfl", "Courant numbers",

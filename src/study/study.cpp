@@ -5,6 +5,7 @@
 #include <functional>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
 
 namespace swemps::study {
 
@@ -28,12 +29,15 @@ std::string number_text(double v) {
 
 }  // namespace
 
-std::vector<RunKnobs> expand(const Sweep& sweep) {
+std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme) {
   // Slowest first: spacing varies least often, so neighbouring rows differ in the cheap knobs.
   const std::vector<std::vector<std::function<void(RunKnobs&)>>> axes{
       axis(sweep.spacing_m, [](RunKnobs& k, double v) { k.spacing_m = v; }),
       axis(sweep.splitting, [](RunKnobs& k, SplittingChoice v) { k.splitting = v; }),
+      axis(sweep.scheme, [](RunKnobs& k, swe::SchemeKind v) { k.scheme = v; }),
       axis(sweep.gradient, [](RunKnobs& k, swe::GradientVariant v) { k.gradient = v; }),
+      axis(sweep.kappa, [](RunKnobs& k, double v) { k.kappa = v; }),
+      axis(sweep.dissipation, [](RunKnobs& k, double v) { k.dissipation = v; }),
       axis(sweep.cfl, [](RunKnobs& k, double v) { k.cfl = v; }),
       axis(sweep.alpha_e, [](RunKnobs& k, double v) { k.alpha_e = v; }),
   };
@@ -50,7 +54,34 @@ std::vector<RunKnobs> expand(const Sweep& sweep) {
     }
     runs = std::move(longer);
   }
-  return runs;
+  // A scheme's own knobs mean nothing to the other scheme (the scene loader refuses them
+  // there): drop them from its runs, then keep the first of any runs that became equal.
+  bool seed_runs = false, conservative_runs = false;
+  std::vector<RunKnobs> kept;
+  for (RunKnobs k : runs) {
+    if (k.scheme.value_or(scene_scheme) == swe::SchemeKind::seed) {
+      seed_runs = true;
+      k.kappa.reset();
+      k.dissipation.reset();
+    } else {
+      conservative_runs = true;
+      k.gradient.reset();
+      k.alpha_e.reset();
+    }
+    if (std::find(kept.begin(), kept.end(), k) == kept.end()) kept.push_back(k);
+  }
+  const auto require = [](bool used, const auto& axis_values, const char* knob,
+                          const char* scheme) {
+    if (!axis_values.empty() && !used) {
+      throw std::invalid_argument(std::string("\"") + knob + "\", a knob of the " + scheme +
+                                  " scheme, which no run uses");
+    }
+  };
+  require(seed_runs, sweep.gradient, "gradient", "seed");
+  require(seed_runs, sweep.alpha_e, "alpha_e", "seed");
+  require(conservative_runs, sweep.kappa, "kappa", "conservative");
+  require(conservative_runs, sweep.dissipation, "dissipation", "conservative");
+  return kept;
 }
 
 void apply(const RunKnobs& knobs, scenario::Scenario& scene) {
@@ -67,7 +98,10 @@ void apply(const RunKnobs& knobs, scenario::Scenario& scene) {
       scene.splitting.reset();
     }
   }
+  if (knobs.scheme) scene.numerics.scheme = *knobs.scheme;
   if (knobs.gradient) scene.numerics.gradient = *knobs.gradient;
+  if (knobs.kappa) scene.numerics.kappa = *knobs.kappa;
+  if (knobs.dissipation) scene.numerics.dissipation = *knobs.dissipation;
   if (knobs.cfl) scene.numerics.cfl = *knobs.cfl;
   if (knobs.alpha_e) scene.numerics.alpha_e = *knobs.alpha_e;
 }
@@ -122,6 +156,10 @@ std::string gradient_name(swe::GradientVariant gradient) {
   return gradient == swe::GradientVariant::summation ? "summation" : "mps";
 }
 
+std::string scheme_name(swe::SchemeKind scheme) {
+  return scheme == swe::SchemeKind::seed ? "seed" : "conservative";
+}
+
 std::string describe(const RunKnobs& knobs) {
   std::vector<std::string> parts;
   if (knobs.spacing_m) parts.push_back("spacing " + number_text(*knobs.spacing_m) + " m");
@@ -129,7 +167,10 @@ std::string describe(const RunKnobs& knobs) {
     const auto threshold = knobs.splitting->area_ratio_threshold;
     parts.push_back("splitting " + (threshold ? number_text(*threshold) : std::string("off")));
   }
+  if (knobs.scheme) parts.push_back(scheme_name(*knobs.scheme));
   if (knobs.gradient) parts.push_back(gradient_name(*knobs.gradient));
+  if (knobs.kappa) parts.push_back("kappa " + number_text(*knobs.kappa));
+  if (knobs.dissipation) parts.push_back("dissipation " + number_text(*knobs.dissipation));
   if (knobs.cfl) parts.push_back("cfl " + number_text(*knobs.cfl));
   if (knobs.alpha_e) parts.push_back("alpha_e " + number_text(*knobs.alpha_e));
   if (parts.empty()) return "the scene as it is";

@@ -262,7 +262,7 @@ void Simulation::keep_snapshot() {
   snapshot_.clear();
   // Room for the fields and a margin for what grows between snapshots, allocated at once: grown
   // piecemeal, the buffer would end up to twice the size it needs.
-  constexpr std::size_t kFields = 12;
+  constexpr std::size_t kFields = 13;
   const std::size_t particles = particles_.fluid_count() + particles_.fluid_count() / 16;
   snapshot_.reserve(kFields * sizeof(double) * particles + 4096);
   write_state(snapshot_);
@@ -292,6 +292,10 @@ void Simulation::write_state(StateWriter& out) const {
                             &p.bed, &p.number_density, &p.smoothing_length, &p.omega}) {
     out.numbers(std::span<const double>(field->data(), n));
   }
+  // Before the first search (or with no water) there is no list: the radii stand for it.
+  const bool listed = listed_smoothing_length_.size() == n;
+  out.numbers(std::span<const double>(
+      listed ? listed_smoothing_length_.data() : p.smoothing_length.data(), n));
   out.count(effects_.size());
   StateWriter effect_state;
   for (const auto& effect : effects_) {
@@ -325,16 +329,18 @@ void Simulation::load_state(StateReader& in) {
   ledger.initial_m3 = in.number();
   ledger.added_m3 = in.number();
   ledger.removed_m3 = in.number();
-  std::array<std::vector<double>, 12> fields;
+  std::array<std::vector<double>, 13> fields;
   for (auto& f : fields) f = in.numbers();
   const std::size_t n = fields[0].size();
   for (const auto& f : fields) {
     if (f.size() != n)
       throw StateError(in.what() + " is damaged: particle fields differ in length");
   }
-  for (const double h : fields[10]) {
-    if (!(h > 0.0) || !std::isfinite(h))
-      throw StateError(in.what() + " is damaged: smoothing length " + number(h));
+  for (const std::size_t k : {10, 12}) {
+    for (const double h : fields[k]) {
+      if (!(h > 0.0) || !std::isfinite(h))
+        throw StateError(in.what() + " is damaged: smoothing length " + number(h));
+    }
   }
   if (in.count() != effects_.size()) {
     throw StateError(in.what() + " was saved with another set of effects than this scene's");
@@ -350,8 +356,8 @@ void Simulation::load_state(StateReader& in) {
   }
 
   particles::SweParticles p;
-  const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density, smoothing, omega] =
-      fields;
+  const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density, smoothing, omega,
+               listed] = fields;
   for (std::size_t i = 0; i < n; ++i) {
     p.add_fluid(x[i], y[i], u[i], v[i], volume[i], depth[i], initial_area[i], bed[i]);
   }
@@ -360,6 +366,7 @@ void Simulation::load_state(StateReader& in) {
   p.smoothing_length = smoothing;
   p.omega = omega;
   particles_ = std::move(p);
+  listed_smoothing_length_ = listed;
   time_s_ = time_s;
   steps_ = counts[0];
   particle_steps_ = counts[1];
@@ -390,6 +397,9 @@ double Simulation::largest_search_radius() const {
 }
 
 void Simulation::add_ghosts_and_neighbors() {
+  const auto fluid_radii = std::span<const double>(particles_.smoothing_length)
+                               .first(particles_.fluid_count());
+  listed_smoothing_length_.assign(fluid_radii.begin(), fluid_radii.end());
   // Ghosts of every particle within the largest search radius of a wall: a particle's mirror
   // image is a neighbour of the particles near the wall whose support reaches it.
   const double reach = largest_search_radius();
@@ -416,7 +426,14 @@ void Simulation::add_ghosts_and_neighbors() {
 void Simulation::rebuild_neighborhood() {
   particles_.drop_ghosts();
   if (particles_.fluid_count() == 0) return;
+  // Searched with the radii the saved list was searched with (listed_smoothing_length_), then
+  // the radii the sums reached, which the ghosts take with the other fields.
+  std::vector<double> reached = listed_smoothing_length_;
+  particles_.smoothing_length.swap(reached);
   add_ghosts_and_neighbors();
+  particles_.smoothing_length.resize(particles_.fluid_count());
+  particles_.smoothing_length.swap(reached);
+  particles_.smoothing_length.resize(particles_.size());
   boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
 }
 

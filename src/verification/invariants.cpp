@@ -25,11 +25,13 @@ const char* non_finite_field(const particles::SweParticles& p, std::size_t i) {
 
 }  // namespace
 
-Energy water_energy(const particles::SweParticles& p, double gravity_m_s2, double datum_m) {
+Energy water_energy(const particles::SweParticles& p, double gravity_m_s2, double datum_m,
+                    const swe::BedSource* bed) {
   Energy e;
   for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+    const double z_b = bed ? bed->elevation(p.x[i], p.y[i]) : p.bed[i];
     e.kinetic += 0.5 * p.volume[i] * (p.u[i] * p.u[i] + p.v[i] * p.v[i]);
-    e.potential += gravity_m_s2 * p.volume[i] * (0.5 * p.depth[i] + p.bed[i] - datum_m);
+    e.potential += gravity_m_s2 * p.volume[i] * (0.5 * p.depth[i] + z_b - datum_m);
   }
   return e;
 }
@@ -63,7 +65,8 @@ InvariantMonitor::InvariantMonitor(swe::Simulation& sim, InvariantBounds bounds)
   datum_m_ = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.fluid_count(); ++i) datum_m_ = std::min(datum_m_, p.bed[i]);
   if (!std::isfinite(datum_m_)) datum_m_ = 0.0;
-  initial_energy_ = water_energy(p, sim.settings().gravity_m_s2, datum_m_).total();
+  initial_energy_ =
+      water_energy(p, sim.settings().gravity_m_s2, datum_m_, bounds_.bed.get()).total();
   record_.min_depth_m = std::numeric_limits<double>::infinity();
   record_.min_time_step_s = std::numeric_limits<double>::infinity();
   record_.min_particles = record_.max_particles = p.fluid_count();
@@ -125,7 +128,8 @@ bool InvariantMonitor::check(swe::Simulation& sim) {
   record_.min_time_step_s = std::min(record_.min_time_step_s, sim.stable_time_step());
 
   if (!(initial_energy_ > 0.0)) return record_.first_violation.empty();
-  const double energy = water_energy(p, sim.settings().gravity_m_s2, datum_m_).total();
+  const double energy =
+      water_energy(p, sim.settings().gravity_m_s2, datum_m_, bounds_.bed.get()).total();
   lowest_energy_ = std::min(lowest_energy_, energy);
   record_.max_energy_rise =
       std::max(record_.max_energy_rise, (energy - lowest_energy_) / initial_energy_);

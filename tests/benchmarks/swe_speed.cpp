@@ -4,14 +4,16 @@
 // down in docs/performance.md.
 //
 // The scene: a dam break from a square reservoir (h0 = 1 m, lattice spacing 0.1 m) into a dry
-// channel as wide and twice as long, slip walls, the eq 6 gradient and particle splitting
-// (threshold 1.5): every part of the method a flood run uses on a flat bed. The first refresh
+// channel as wide and twice as long, slip walls and particle splitting (threshold 1.5): every
+// part of the method a flood run uses on a flat bed. The default scheme, or the seed scheme
+// with its eq 6 gradient (SWEMPS_BENCH_SCHEME=seed). The first refresh
 // is not timed; then `steps` steps are, chosen so that each size does about 2e7
 // particle-steps. Memory is the growth of the resident set while the simulation is alive,
 // divided by the particles.
 //
 //   swemps-swe-speed [particles ...]        (default: 10000 100000 1000000)
-//   SWEMPS_BENCH_THREADS="1 2" SWEMPS_BENCH_PARTICLE_STEPS=2e7 swemps-swe-speed
+//   SWEMPS_BENCH_THREADS="1 2" SWEMPS_BENCH_PARTICLE_STEPS=2e7 SWEMPS_BENCH_SCHEME=seed \
+//     swemps-swe-speed
 
 #include <omp.h>
 #include <unistd.h>
@@ -47,12 +49,15 @@ double resident_bytes() {
 }
 
 // The reservoir holds side x side lattice points; the channel continues to x = 3 side.
-std::string dam_break_scene(std::size_t particles) {
+std::string dam_break_scene(std::size_t particles, bool seed) {
   const double spacing = 0.1;
   const double side = std::round(std::sqrt(static_cast<double>(particles))) * spacing;
   std::ostringstream json;
   json << R"({ "name": "speed", "end_time": 1000.0,
-    "numerics": { "cfl": 0.5, "alpha_e": 1.3, "gradient": "mps" },
+    "numerics": )"
+       << (seed ? R"({ "cfl": 0.5, "scheme": "seed", "alpha_e": 1.3, "gradient": "mps" })"
+                : R"({ "cfl": 0.5 })")
+       << R"(,
     "domain": { "x_min": 0, "x_max": )"
        << 3 * side << R"(, "y_min": 0, "y_max": )" << side << R"( },
     "water": [ { "rectangle": { "x_min": 0, "x_max": )"
@@ -76,13 +81,13 @@ struct Measurement {
   double effects_s = 0.0, splitting_s = 0.0;
 };
 
-Measurement measure(std::size_t particles, int threads, double particle_steps_wanted) {
+Measurement measure(std::size_t particles, int threads, double particle_steps_wanted, bool seed) {
   namespace fs = std::filesystem;
   using namespace swemps;
   omp_set_num_threads(threads);
   const fs::path folder = fs::temp_directory_path() / ("swemps-speed-" + std::to_string(getpid()));
   fs::create_directories(folder);
-  auto scene = scenario::parse(dam_break_scene(particles), folder);
+  auto scene = scenario::parse(dam_break_scene(particles, seed), folder);
   const double rss_before = resident_bytes();
   auto built = scenario::build(scene);
   auto& sim = built.simulation;
@@ -148,6 +153,9 @@ int main(int argc, char** argv) {
   if (sizes.empty()) sizes = {10'000, 100'000, 1'000'000};
   const char* wanted_env = std::getenv("SWEMPS_BENCH_PARTICLE_STEPS");
   const double wanted = wanted_env ? std::atof(wanted_env) : 2e7;
+  const char* scheme_env = std::getenv("SWEMPS_BENCH_SCHEME");
+  const bool seed = scheme_env != nullptr && std::string(scheme_env) == "seed";
+  std::printf("scheme: %s\n\n", seed ? "seed (eq 6)" : "conservative");
 
   std::printf(
       "| particles | threads | steps | particles at end | neighbours per particle | wall (s) | "
@@ -158,7 +166,7 @@ int main(int argc, char** argv) {
       "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::size_t n : sizes) {
     for (const int threads : thread_counts()) {
-      const auto m = measure(n, threads, wanted);
+      const auto m = measure(n, threads, wanted, seed);
       const double rate = static_cast<double>(m.particle_steps) / m.wall_s;
       std::printf(
           "| %zu | %d | %zu | %zu | %.1f | %.2f | %.3g | %.3g | %.2f | %.2f | %.2f | %.2f | %.2f | "

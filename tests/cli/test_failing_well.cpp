@@ -37,7 +37,6 @@ const std::string cli = SWEMPS_CLI;
 // whose state a checkpoint must carry. About a second on one thread.
 constexpr const char* kDamScene = R"({
   "name": "dam", "end_time": 2.5,
-  "numerics": {"gradient": "summation"},
   "domain": {"x_min": 0, "x_max": 12, "y_min": 0, "y_max": 1},
   "water": [{"rectangle": {"x_min": 0, "x_max": 4, "y_min": 0, "y_max": 1},
              "depth": 0.25, "spacing": 0.05}],
@@ -49,10 +48,11 @@ constexpr const char* kDamScene = R"({
   "output": {"path": "dam.nc", "interval": 0.25, "grid": {"spacing": 0.1}}
 })";
 
-// Ritter's dam break with a time-step floor that the shrinking step crosses in step 4.
+// Ritter's dam break with a time-step floor that the seed scheme's shrinking step crosses in
+// step 4.
 constexpr const char* kCollapseScene = R"({
   "name": "collapse", "end_time": 0.5,
-  "numerics": {"min_time_step": 0.027},
+  "numerics": {"scheme": "seed", "min_time_step": 0.027},
   "domain": {"x_min": 0, "x_max": 10, "y_min": 0, "y_max": 1},
   "water": [{"rectangle": {"x_min": 0, "x_max": 4.65, "y_min": 0, "y_max": 1},
              "depth": 0.25, "spacing": 0.1}],

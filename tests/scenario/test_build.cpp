@@ -106,11 +106,14 @@ double max_speed(const swemps::particles::SweParticles& p) {
 
 }  // namespace
 
-TEST_CASE("a lake filled to a level on a raster bed starts balanced and at rest",
+TEST_CASE("under the seed scheme a lake filled to a level on a raster bed starts balanced and "
+          "at rest",
           "[scenario][build]") {
   TempDir dir;
   write_raster(dir.path(), "bed.tif", bowl);
-  const auto scene = scene_in(dir, lake_scene());
+  json seed_lake = lake_scene();
+  seed_lake["numerics"] = {{"scheme", "seed"}};
+  const auto scene = scene_in(dir, seed_lake);
   auto built = swemps::scenario::build(scene);
 
   // The domain is the raster's extent, and the scene's CRS the raster's.
@@ -159,11 +162,21 @@ TEST_CASE("a lake filled to a level on a raster bed starts balanced and at rest"
 TEST_CASE("geometric volumes keep depth x cell area", "[scenario][build]") {
   TempDir dir;
   write_raster(dir.path(), "bed.tif", bowl);
-  json scene = lake_scene();
-  scene["water"][0]["volumes"] = "geometric";
-  auto built = swemps::scenario::build(scene_in(dir, scene));
-  CHECK_FALSE(built.volumes.balance.has_value());
-  CHECK(built.simulation.ledger().initial_m3 == Approx(built.volumes.geometric_m3).epsilon(1e-12));
+  SECTION("asked for under the seed scheme") {
+    json scene = lake_scene();
+    scene["numerics"] = {{"scheme", "seed"}};
+    scene["water"][0]["volumes"] = "geometric";
+    auto built = swemps::scenario::build(scene_in(dir, scene));
+    CHECK_FALSE(built.volumes.balance.has_value());
+    CHECK(built.simulation.ledger().initial_m3 ==
+          Approx(built.volumes.geometric_m3).epsilon(1e-12));
+  }
+  SECTION("by default, under the conservative scheme") {
+    auto built = swemps::scenario::build(scene_in(dir, lake_scene()));
+    CHECK_FALSE(built.volumes.balance.has_value());
+    CHECK(built.simulation.ledger().initial_m3 ==
+          Approx(built.volumes.geometric_m3).epsilon(1e-12));
+  }
 }
 
 TEST_CASE("the output grid of a raster bed is the DEM's own cells", "[scenario][build]") {

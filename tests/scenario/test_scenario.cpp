@@ -127,11 +127,11 @@ std::vector<Broken> broken_scenes() {
        }),
        "/numerics/cfl", "found 1.5, expected a number in (0, 1]"},
       {"alpha_e far too large", edited([](json& s) {
-         s["numerics"] = {{"alpha_e", 10}};
+         s["numerics"] = {{"scheme", "seed"}, {"alpha_e", 10}};
        }),
        "/numerics/alpha_e", "a number in [1, 3]"},
       {"bad gradient name", edited([](json& s) {
-         s["numerics"] = {{"gradient", "sumation"}};
+         s["numerics"] = {{"scheme", "seed"}, {"gradient", "sumation"}};
        }),
        "/numerics/gradient", "one of \"mps\", \"summation\" (did you mean \"summation\"?)"},
       {"bad wall condition", edited([](json& s) {
@@ -299,7 +299,8 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
     "description": "a test dam",
     "gravity": 9.8,
     "end_time": 2.0,
-    "numerics": {"cfl": 0.3, "alpha_e": 2.0, "gradient": "mps", "min_time_step": 1e-6,
+    "numerics": {"scheme": "seed", "cfl": 0.3, "alpha_e": 2.0, "gradient": "mps",
+                 "min_time_step": 1e-6,
                  "max_area_ratio": 9, "eddy_viscosity": 0.02},
     "domain": {"x_min": -1, "x_max": 10, "y_min": -2, "y_max": 3},
     "water": [
@@ -393,8 +394,10 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.description.empty());
   CHECK(s.numerics.gravity_m_s2 == 9.81);
   CHECK(s.numerics.cfl == 0.5);
-  CHECK(s.numerics.alpha_e == 1.3);
-  CHECK(s.numerics.gradient == swemps::swe::GradientVariant::mps);
+  CHECK(s.numerics.scheme == swemps::swe::SchemeKind::conservative);
+  CHECK(s.numerics.kappa == 1.3);
+  CHECK(s.numerics.kernel == swemps::swe::KernelShape::cubic_spline);
+  CHECK(s.numerics.dissipation == 1.0);
   CHECK(s.numerics.min_time_step_s == 1e-8);
   CHECK(s.numerics.max_area_ratio == 4.0);
   CHECK_FALSE(s.eddy_viscosity_m2_s.has_value());  // no eddy viscosity
@@ -696,7 +699,11 @@ std::vector<Broken> broken_terrain_scenes() {
        "/water/0/min_depth", "found -0.1, expected a number >= 0 (metres)"},
       {"misspelt volume rule", raster_edited([](json& s) { s["water"][0]["volumes"] = "balance"; }),
        "/water/0/volumes", "one of \"geometric\", \"balanced\" (did you mean \"balanced\"?)"},
+      {"balanced under the conservative scheme",
+       raster_edited([](json& s) { s["water"][0]["volumes"] = "balanced"; }), "/water/0/volumes",
+       "found \"balanced\" under the conservative scheme, expected \"geometric\""},
       {"geometric beside balanced", raster_edited([](json& s) {
+         s["numerics"] = {{"scheme", "seed"}};
          s["water"].push_back(
              {{"rectangle",
                {{"x_min", 500000}, {"x_max", 500050}, {"y_min", 4000000}, {"y_max", 4000050}}},
@@ -819,6 +826,8 @@ TEST_CASE("broken terrain, inflow, outflow and output sections point at the exac
 
 TEST_CASE("a raster scene arrives as given, with its domain left to the bed", "[scenario]") {
   json scene = raster_scene();
+  // Balanced volumes are the seed scheme's (docs/scenario.md).
+  scene["numerics"] = {{"scheme", "seed"}};
   scene["friction"] = {{"manning_n_raster", "landuse/n.tif"}};
   scene["water"].push_back(json::parse(R"({"depth_raster": "NETCDF:\"h.nc\":depth",
                                            "spacing": 20, "min_depth": 0.05, "volumes": "balanced",

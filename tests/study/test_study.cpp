@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using Catch::Matchers::Contains;
 using swemps::scenario::ScenarioError;
 using swemps::swe::GradientVariant;
+using swemps::swe::SchemeKind;
 using namespace swemps::study;
 
 const std::string kRitter = std::string(SWEMPS_SOURCE_DIR) + "/cases/ritter/scenario.json";
@@ -121,7 +122,7 @@ TEST_CASE("expand gives the product of the axes, the first axis slowest", "[stud
   sweep.splitting = {SplittingChoice{}, SplittingChoice{1.5}};
   sweep.gradient = {GradientVariant::mps, GradientVariant::summation};
   sweep.alpha_e = {1.2};
-  const auto runs = expand(sweep);
+  const auto runs = expand(sweep, SchemeKind::seed);
   REQUIRE(runs.size() == 8);
   std::size_t k = 0;
   for (const double spacing : {0.2, 0.1}) {
@@ -141,8 +142,44 @@ TEST_CASE("expand gives the product of the axes, the first axis slowest", "[stud
   CHECK(runs[3].splitting->area_ratio_threshold == 1.5);
 }
 
+TEST_CASE("expand gives each scheme its own knobs and runs each combination once", "[study]") {
+  Sweep sweep;
+  sweep.scheme = {SchemeKind::seed, SchemeKind::conservative};
+  sweep.gradient = {GradientVariant::mps, GradientVariant::summation};
+  sweep.kappa = {1.2, 1.3};
+  sweep.cfl = {0.5};
+  const auto runs = expand(sweep, SchemeKind::conservative);
+  // seed x {mps, summation} and conservative x {1.2, 1.3}: not 2 x 2 x 2.
+  REQUIRE(runs.size() == 4);
+  for (std::size_t k = 0; k < 2; ++k) {
+    INFO("run " << k);
+    CHECK(runs[k].scheme == SchemeKind::seed);
+    CHECK(runs[k].gradient == sweep.gradient[k]);
+    CHECK_FALSE(runs[k].kappa.has_value());
+    CHECK(runs[k].cfl == 0.5);
+    CHECK(runs[2 + k].scheme == SchemeKind::conservative);
+    CHECK(runs[2 + k].kappa == sweep.kappa[k]);
+    CHECK_FALSE(runs[2 + k].gradient.has_value());
+    CHECK(runs[2 + k].cfl == 0.5);
+  }
+  CHECK(describe(runs[3]) == "conservative, kappa 1.3, cfl 0.5");
+
+  // Without a scheme axis the scene's scheme decides which knobs apply.
+  Sweep conservative_knobs;
+  conservative_knobs.kappa = {1.2, 1.5};
+  conservative_knobs.dissipation = {0.5};
+  CHECK(expand(conservative_knobs, SchemeKind::conservative).size() == 2);
+  // A swept knob that applies to no run is a mistake, not a silent no-op.
+  CHECK_THROWS_WITH(expand(conservative_knobs, SchemeKind::seed),
+                    Contains("\"kappa\", a knob of the conservative scheme"));
+  Sweep seed_knobs;
+  seed_knobs.alpha_e = {1.3};
+  CHECK_THROWS_WITH(expand(seed_knobs, SchemeKind::conservative),
+                    Contains("\"alpha_e\", a knob of the seed scheme"));
+}
+
 TEST_CASE("a sweep of no axis is one run of the scene as it is", "[study]") {
-  const auto runs = expand(Sweep{});
+  const auto runs = expand(Sweep{}, SchemeKind::conservative);
   REQUIRE(runs.size() == 1);
   CHECK_FALSE(runs[0].spacing_m.has_value());
   CHECK_FALSE(runs[0].splitting.has_value());
@@ -163,10 +200,12 @@ TEST_CASE("apply sets the given knobs on a scene and leaves the rest", "[study]"
   RunKnobs knobs;
   knobs.spacing_m = 0.05;
   knobs.splitting = SplittingChoice{1.8};
+  knobs.scheme = SchemeKind::seed;
   knobs.gradient = GradientVariant::summation;
   knobs.cfl = 0.3;
   knobs.alpha_e = 1.5;
   apply(knobs, scene);
+  CHECK(scene.numerics.scheme == SchemeKind::seed);
   CHECK(scene.water[0].spacing_m == 0.05);
   CHECK(finest_spacing(scene) == 0.05);
   REQUIRE(scene.splitting.has_value());
@@ -175,7 +214,16 @@ TEST_CASE("apply sets the given knobs on a scene and leaves the rest", "[study]"
   CHECK(scene.numerics.gradient == GradientVariant::summation);
   CHECK(scene.numerics.cfl == 0.3);
   CHECK(scene.numerics.alpha_e == 1.5);
-  CHECK(describe(knobs) == "spacing 0.05 m, splitting 1.8, summation, cfl 0.3, alpha_e 1.5");
+  CHECK(describe(knobs) ==
+        "spacing 0.05 m, splitting 1.8, seed, summation, cfl 0.3, alpha_e 1.5");
+  RunKnobs conservative;
+  conservative.scheme = SchemeKind::conservative;
+  conservative.kappa = 1.4;
+  conservative.dissipation = 0.5;
+  apply(conservative, scene);
+  CHECK(scene.numerics.scheme == SchemeKind::conservative);
+  CHECK(scene.numerics.kappa == 1.4);
+  CHECK(scene.numerics.dissipation == 0.5);
 
   // Splitting on keeps the scene's own settings but the threshold; off removes it.
   scene.splitting->alpha_s = 0.5;
@@ -213,7 +261,8 @@ TEST_CASE("a study file arrives field by field, paths taken from its folder", "[
     "description": "two spacings",
     "scene": "case/scenario.json",
     "reference": {"ritter": {"dam_x": 25, "depth": 1, "reservoir_start_x": -1}},
-    "sweep": {"spacing": [0.2, 0.1], "splitting": [null, 1.5], "gradient": ["summation"],
+    "sweep": {"spacing": [0.2, 0.1], "splitting": [null, 1.5], "scheme": ["seed"],
+              "gradient": ["summation"], "kappa": [1.2, 1.4], "dissipation": [0, 1],
               "cfl": [0.5, 2], "alpha_e": [1.3]},
     "profile_spacing_ratio": 8,
     "jobs": 3,
@@ -228,11 +277,19 @@ TEST_CASE("a study file arrives field by field, paths taken from its folder", "[
   REQUIRE(s.sweep.splitting.size() == 2);
   CHECK_FALSE(s.sweep.splitting[0].area_ratio_threshold.has_value());
   CHECK(s.sweep.splitting[1].area_ratio_threshold == 1.5);
+  CHECK(s.sweep.scheme == std::vector<SchemeKind>{SchemeKind::seed});
   CHECK(s.sweep.gradient == std::vector<GradientVariant>{GradientVariant::summation});
+  CHECK(s.sweep.kappa == std::vector<double>{1.2, 1.4});
+  CHECK(s.sweep.dissipation == std::vector<double>{0.0, 1.0});
   CHECK(s.sweep.cfl == std::vector<double>{0.5, 2.0});
   CHECK(s.profile_spacing_ratio == 8.0);
   CHECK(s.jobs == 3);
-  CHECK(expand(s.sweep).size() == 8);
+  // Every run is a seed run, so kappa and dissipation would apply to none.
+  CHECK_THROWS(expand(s.sweep, SchemeKind::conservative));
+  auto seed_only = s.sweep;
+  seed_only.kappa.clear();
+  seed_only.dissipation.clear();
+  CHECK(expand(seed_only, SchemeKind::conservative).size() == 8);
 
   const auto defaults = parse(study_text(R"({"spacing": [0.1]})"));
   CHECK(defaults.output == fs::path("/studies/default.csv"));
@@ -259,6 +316,11 @@ TEST_CASE("broken study files are refused at the JSON path of the problem", "[st
       {"splitting as a word", study_text(R"({"splitting": ["off"]})"), "/sweep/splitting/0",
        "null (no splitting)"},
       {"alpha_e out of range", study_text(R"({"alpha_e": [0.5]})"), "/sweep/alpha_e/0", "[1, 3]"},
+      {"bad scheme name", study_text(R"({"scheme": ["sed"]})"), "/sweep/scheme/0",
+       "did you mean \"seed\"?"},
+      {"kappa out of range", study_text(R"({"kappa": [3]})"), "/sweep/kappa/0", "[1, 2.5]"},
+      {"negative dissipation", study_text(R"({"dissipation": [-1]})"), "/sweep/dissipation/0",
+       "[0, 2]"},
       {"missing reference", R"({"scene": "s.json", "sweep": {}})", "/reference", "ritter"},
       {"reference without depth", R"({"scene": "s.json", "sweep": {},
          "reference": {"ritter": {"dam_x": 4.65}}})",
@@ -297,7 +359,8 @@ TEST_CASE("swe-mps study runs every combination and tabulates cost and error", "
   std::ofstream(dir.path() / "study.json") << R"({
     "scene": ")" + kRitter + R"(",
     "reference": {"ritter": {"dam_x": 4.65, "depth": 0.25}},
-    "sweep": {"spacing": [0.1], "gradient": ["mps", "summation"]},
+    "sweep": {"spacing": [0.1], "scheme": ["seed", "conservative"],
+              "gradient": ["mps", "summation"]},
     "jobs": 2
   })";
   const auto table = dir.path() / "table.csv";
@@ -307,14 +370,27 @@ TEST_CASE("swe-mps study runs every combination and tabulates cost and error", "
   REQUIRE(r.status == 0);
   CHECK_FALSE(fs::exists(table.string() + ".partial"));
   // Not a terminal: a plain line per finished run, then the summary.
-  CHECK_THAT(r.output, Contains("run 1/2 (spacing 0.1 m, mps): ok"));
-  CHECK_THAT(r.output, Contains("run 2/2 (spacing 0.1 m, summation): ok"));
+  CHECK_THAT(r.output, Contains("run 1/3 (spacing 0.1 m, seed, mps): ok"));
+  CHECK_THAT(r.output, Contains("run 2/3 (spacing 0.1 m, seed, summation): ok"));
+  CHECK_THAT(r.output, Contains("run 3/3 (spacing 0.1 m, conservative): ok"));
   CHECK_THAT(r.output, Contains("Pareto front"));
 
   const auto rows = read_csv(table);
-  REQUIRE(rows.size() == 2);
+  REQUIRE(rows.size() == 3);
   CHECK(rows[0].at("gradient") == "mps");
   CHECK(rows[1].at("gradient") == "summation");
+  for (std::size_t k = 0; k < 2; ++k) {
+    CHECK(rows[k].at("scheme") == "seed");
+    CHECK(rows[k].at("kappa").empty());  // the conservative scheme's knobs
+    CHECK(rows[k].at("dissipation").empty());
+    CHECK(number(rows[k], "alpha_e") == 1.3);
+  }
+  // And the seed scheme's knobs are blank in the conservative run's row.
+  CHECK(rows[2].at("scheme") == "conservative");
+  CHECK(rows[2].at("gradient").empty());
+  CHECK(rows[2].at("alpha_e").empty());
+  CHECK(number(rows[2], "kappa") == 1.3);
+  CHECK(number(rows[2], "dissipation") == 1.0);
   for (const CsvRow& row : rows) {
     CHECK(row.at("status") == "ok");
     CHECK(row.at("message").empty());

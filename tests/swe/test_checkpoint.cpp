@@ -30,7 +30,7 @@ namespace {
 // and the open end of the domain (their counts).
 constexpr const char* kEffectsScene = R"({
   "name": "restart", "end_time": 10,
-  "numerics": {"gradient": "summation", "eddy_viscosity": 0.01},
+  "numerics": {"eddy_viscosity": 0.01},
   "domain": {"x_min": 0, "x_max": 3, "y_min": 0, "y_max": 1},
   "water": [{"rectangle": {"x_min": 0.2, "x_max": 1.2, "y_min": 0, "y_max": 1},
              "depth": 0.2, "spacing": 0.1}],

@@ -67,13 +67,14 @@ TEST_CASE("water at rest in a walled box stays at rest", "[swe][boundaries]") {
   CHECK(std::abs(sim.relative_volume_change()) < 1e-14);
 }
 
-TEST_CASE("the summation gradient conserves momentum exactly", "[swe]") {
+TEST_CASE("the seed scheme's summation gradient conserves momentum exactly", "[swe]") {
   // A square of water spreading on a dry bed with no walls: by symmetry the total momentum
   // sum_i V_i u_i stays zero, and the antisymmetric pair forces keep it so to round-off
   // even when the square is offset and disturbed.
   auto p = block(0.0, 1.0, 0.0, 0.7, 0.3, 0.05);
   for (std::size_t i = 0; i < p.fluid_count(); ++i) p.x[i] += 1e-3 * std::sin(37.0 * p.y[i]);
   swe::Settings settings;
+  settings.scheme = swe::SchemeKind::seed;
   settings.gradient = swe::GradientVariant::summation;
   swe::Simulation sim(std::move(p), settings, {}, {});
   sim.advance_to(0.3);
@@ -93,10 +94,9 @@ TEST_CASE("the summation gradient conserves momentum exactly", "[swe]") {
 TEST_CASE("results do not depend on the number of threads", "[swe]") {
   auto scene = scenario::load(std::string(SWEMPS_SOURCE_DIR) + "/cases/ritter/scenario.json");
   // 7,440 particles: every particle loop and reduction runs in parallel (above
-  // parallel_threshold), and splitting adds particles (with the summation gradient: under
-  // eq 6 the tip never grows past the threshold), so sorting and the split scan are in.
+  // parallel_threshold), and splitting adds particles, so sorting and the split scan are in.
+  // The case's default scheme: per-particle radii, the depth iteration and re-searches too.
   for (auto& body : scene.water) body.spacing_m = 0.025;
-  scene.numerics.gradient = swe::GradientVariant::summation;
   scene.splitting = splitting::SplittingSettings{};
   const int before = omp_get_max_threads();
   auto run = [&](int threads) {
@@ -203,6 +203,8 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
   // droplet's summed area is 1 / w(0), which grows with r_e. Counted in A_max it would make
   // r_e grow x1.46 every step.
   constexpr double spacing = 0.1;
+  swe::Settings seed;
+  seed.scheme = swe::SchemeKind::seed;
   auto water = block(0, 1, 0, 1, 0.2, spacing);
   const double a0 = spacing * spacing;
   const auto two_boxes = [] {
@@ -213,14 +215,14 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     return boundaries::GhostWalls(walls);
   };
   const double pool_radius = [&] {
-    swe::Simulation pool(water, {}, two_boxes(), {});
+    swe::Simulation pool(water, seed, two_boxes(), {});
     pool.advance_to(0.5);
     return pool.particles().smoothing_length[0];  // eq 9: the same for all
   }();
   REQUIRE(pool_radius < 1.1 * swe::Settings{}.alpha_e * spacing);  // about the lattice radius
   SECTION("one droplet does not set the radius") {
     water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
-    swe::Simulation sim(water, {}, two_boxes(), {});
+    swe::Simulation sim(water, seed, two_boxes(), {});
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);
     CHECK(sim.particles().smoothing_length[0] == Approx(pool_radius).epsilon(1e-12));
@@ -230,7 +232,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     // alpha_e^2 / 2.5 > 1 feeds r_e without end. The A_0 bound stops it.
     water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
     water.add_fluid(8.0, 0.6, 0.0, 0.0, 0.2 * a0, 0.2, a0, 0.0);
-    swe::Settings settings;
+    const swe::Settings settings = seed;
     swe::Simulation sim(water, settings, two_boxes(), {});
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);

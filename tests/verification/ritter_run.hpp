@@ -3,7 +3,7 @@
 
 #include <chrono>
 #include <cmath>
-#include <optional>
+#include <functional>
 #include <string>
 
 #include "swemps/scenario/build.hpp"
@@ -36,12 +36,12 @@ inline verification::Profile channel_profile(const swe::Simulation& sim,
                                        {d.x_min, d.x_max, d.y_min, d.y_max}, spacing_m / 4.0);
 }
 
-// The scene as it is, but for the spacing and (if given) the gradient variant.
+// The scene as it is, but for the spacing and (if given) changes to its numerics.
 inline RitterRun run_ritter(double spacing_m,
-                            std::optional<swe::GradientVariant> gradient = std::nullopt) {
+                            const std::function<void(swe::Settings&)>& numerics = {}) {
   auto scene = ritter_scene();
   for (auto& body : scene.water) body.spacing_m = spacing_m;
-  if (gradient) scene.numerics.gradient = *gradient;
+  if (numerics) numerics(scene.numerics);
   const auto start = std::chrono::steady_clock::now();
   auto sim = scenario::make_simulation(scene);
   RitterRun run;

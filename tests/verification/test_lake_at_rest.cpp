@@ -75,7 +75,9 @@ LakeRun run_lake(double end_time_s, bool balanced, double viscosity_m2_s) {
     }
   }
   const double geometric = water.total_fluid_volume();
+  // Balanced volumes are the seed scheme's answer to a lake at rest (docs/method.md).
   swe::Settings settings;
+  settings.scheme = swe::SchemeKind::seed;
   std::vector<std::unique_ptr<swe::Effect>> effects;
   effects.push_back(std::make_unique<swe::BedSlope>(bed, settings.gradient));
   if (viscosity_m2_s > 0.0) effects.push_back(std::make_unique<swe::EddyViscosity>(viscosity_m2_s));

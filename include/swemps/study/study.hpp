@@ -1,6 +1,6 @@
 #pragma once
 // An accuracy-cost study: one scene run many times with its numerical knobs (particle spacing,
-// splitting, gradient variant, Courant number, support radius) set to every combination of
+// splitting, scheme and its parameters, Courant number) set to every combination of
 // the values listed, each run's depth measured against an analytic solution at the scene's
 // end time. What runs the combinations (processes, timing, the table) is the study command;
 // this module says what the runs are and what each one measures. No file formats here: the
@@ -22,22 +22,32 @@ namespace swemps::study {
 // Splitting as a knob: off, or on with this area-ratio threshold.
 struct SplittingChoice {
   std::optional<double> area_ratio_threshold;  // absent: no splitting
+
+  bool operator==(const SplittingChoice&) const = default;
 };
 
 // One run's knobs. Each one absent means "as the scene has it".
 struct RunKnobs {
   std::optional<double> spacing_m;  // of every water body
   std::optional<SplittingChoice> splitting;
-  std::optional<swe::GradientVariant> gradient;
+  std::optional<swe::SchemeKind> scheme;
+  std::optional<swe::GradientVariant> gradient;  // seed scheme only
+  std::optional<double> kappa;                    // conservative scheme only
+  std::optional<double> dissipation;              // conservative scheme only
   std::optional<double> cfl;
-  std::optional<double> alpha_e;
+  std::optional<double> alpha_e;  // seed scheme only
+
+  bool operator==(const RunKnobs&) const = default;
 };
 
 // The values each knob takes; an empty axis is not swept (the scene's value is kept).
 struct Sweep {
   std::vector<double> spacing_m;
   std::vector<SplittingChoice> splitting;
+  std::vector<swe::SchemeKind> scheme;
   std::vector<swe::GradientVariant> gradient;
+  std::vector<double> kappa;
+  std::vector<double> dissipation;
   std::vector<double> cfl;
   std::vector<double> alpha_e;
 };
@@ -64,8 +74,11 @@ struct Study {
 
 // Every combination of the sweep's values, the first axis (spacing) slowest and the last
 // (alpha_e) fastest, in the order the values are listed. A study with no axis swept has one
-// run: the scene as it is.
-std::vector<RunKnobs> expand(const Sweep& sweep);
+// run: the scene as it is. A knob of one scheme is left out of the runs of the other (the
+// scheme of a run is its scheme knob, or else the scene's), and runs made equal by that are
+// kept once: scheme [seed, conservative] x gradient [mps, summation] x kappa [1.2, 1.3] is
+// four runs, not eight. Throws std::invalid_argument when a swept knob applies to no run.
+std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme);
 
 // Sets the knobs that are given on a loaded scene. Splitting on keeps the scene's other
 // splitting settings (or the defaults when it has none) and sets the threshold.
@@ -98,8 +111,9 @@ struct CostError {
 // are all kept. Indices into `runs`, cheapest first.
 std::vector<std::size_t> pareto_front(const std::vector<CostError>& runs);
 
-// Names for the table and messages: "mps" / "summation"; "off" or the threshold.
+// Names for the table and messages: "mps" / "summation"; "seed" / "conservative".
 std::string gradient_name(swe::GradientVariant gradient);
+std::string scheme_name(swe::SchemeKind scheme);
 std::string describe(const RunKnobs& knobs);  // "spacing 0.05 m, splitting 1.5, mps"
 
 }  // namespace swemps::study

@@ -32,7 +32,7 @@ enum class GradientVariant {
 struct Settings {
   double gravity_m_s2 = 9.81;
   double cfl = 0.5;      // eq 13
-  SchemeKind scheme = SchemeKind::seed;
+  SchemeKind scheme = SchemeKind::conservative;
   // Conservative scheme: h_i = kappa sqrt(A_i), the kernel shape, and alpha of the pairwise
   // dissipation (0: none). kappa 1.3 with the cubic spline puts some 20 neighbours in a
   // particle's support and sums uniform water to within 0.4 % (docs/kernels.md).

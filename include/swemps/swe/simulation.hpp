@@ -188,6 +188,11 @@ class Simulation {
   std::vector<double> effect_seconds_;
   std::unique_ptr<Scheme> scheme_;
   std::vector<double> search_radii_;  // per particle, ghosts included (non-uniform schemes)
+  // The fluid particles' radii the neighbour list was searched with. A scheme may change the
+  // radii after the search (the conservative scheme's depth iteration), and the list's cells
+  // and ghosts, and so the order of every sum, follow the searched radii: a restored state
+  // searches with these again to continue bit for bit.
+  std::vector<double> listed_smoothing_length_;
   neighbors::CellList<2> cells_;
   neighbors::NeighborList neighbor_list_;
   std::vector<double> accel_x_, accel_y_, old_x_, old_y_;
