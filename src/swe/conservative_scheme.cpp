@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
+#include <vector>
 
 #include "swemps/neighbors/parallel.hpp"
 
@@ -27,14 +29,40 @@ constexpr double kCoincident = 1e-12;
 // Stoker bore, docs/method.md).
 constexpr double kSignalJump = 3.0;
 
-// The depth of particle i and its grad-h factor, by Newton's method (see the header).
+// One row's neighbour distances and volumes, gathered once so that each Newton iteration is
+// a tight loop over contiguous values (vectorised) rather than a walk through the particles.
+struct RowBuffer {
+  std::vector<double> r, volume;
+  void gather(const particles::SweParticles& p, std::span<const std::uint32_t> row,
+              std::size_t i) {
+    r.resize(row.size());
+    volume.resize(row.size());
+    const double xi = p.x[i], yi = p.y[i];
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const std::uint32_t j = row[k];
+      const double dx = p.x[j] - xi, dy = p.y[j] - yi;
+      r[k] = std::sqrt(dx * dx + dy * dy);
+      volume[k] = p.volume[j];
+    }
+  }
+};
+
+// The depth of particle i and its grad-h factor, by Newton's method (see the header). With
+// W = sigma / h^D f(q), q = r / h, the sum and its h-derivative share the sums
+// F = sum V_j f(q_j) and G = sum V_j (D f(q_j) + q_j f'(q_j)):
+//   S(h) = sigma / h^D F,   dS/dh = -sigma / h^(D+1) G   (kernels/scaled_kernel.hpp).
 template <class K>
 std::uint32_t sum_depth_at(particles::SweParticles& p, const neighbors::NeighborList& nl,
-                           std::size_t i, double kappa, double max_area_ratio) {
+                           std::size_t i, double kappa, double max_area_ratio, RowBuffer& row) {
+  constexpr double kDim = 2.0;
   const double volume = p.volume[i];
   const double largest_area = max_area_ratio * p.initial_area[i];
   const double largest_h = kappa * std::sqrt(largest_area);
-  const auto row = nl.row(i);
+  row.gather(p, nl.row(i), i);
+  const std::size_t count = row.r.size();
+  const double* r = row.r.data();
+  const double* v = row.volume.data();
+  const double self_f = K::shape(0.0);
   double d = p.depth[i];
   if (!(d > 0.0) || !std::isfinite(d)) d = volume / p.area[i];
   double h = 0.0, sum = 0.0, omega = 1.0;
@@ -44,14 +72,18 @@ std::uint32_t sum_depth_at(particles::SweParticles& p, const neighbors::Neighbor
     const double area = volume / d;
     const bool capped = area >= largest_area;
     h = capped ? largest_h : kappa * std::sqrt(area);
-    sum = volume * K::w(0.0, h);
-    double slope = volume * K::dw_dh(0.0, h);
-    for (const std::uint32_t j : row) {
-      const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
-      const double r = std::sqrt(dx * dx + dy * dy);
-      sum += p.volume[j] * K::w(r, h);
-      slope += p.volume[j] * K::dw_dh(r, h);
+    const double inverse_h = 1.0 / h;
+    double f_sum = volume * self_f, g_sum = volume * kDim * self_f;
+#pragma omp simd reduction(+ : f_sum, g_sum)
+    for (std::size_t k = 0; k < count; ++k) {
+      const double q = r[k] * inverse_h;
+      const double f = K::shape(q);
+      f_sum += v[k] * f;
+      g_sum += v[k] * (kDim * f + q * K::shape_slope(q));
     }
+    const double scale = K::sigma() * inverse_h * inverse_h;  // sigma / h^2
+    sum = scale * f_sum;
+    const double slope = -scale * inverse_h * g_sum;
     omega = capped ? 1.0 : std::max(kSmallestOmega, 1.0 + h / (2.0 * d) * slope);
     const double next = std::clamp(d - (d - sum) / omega, d / kLargestStep, d * kLargestStep);
     const bool converged = std::abs(next - d) <= kDepthTolerance * d;
@@ -67,38 +99,75 @@ std::uint32_t sum_depth_at(particles::SweParticles& p, const neighbors::Neighbor
   return iterations;
 }
 
+// One row's pair terms, gathered so that the kernel slopes and the dissipation are computed
+// in a tight loop over contiguous values.
+struct PairBuffer {
+  std::vector<double> dx, dy, r, h, inverse_omega, volume, depth, celerity, du, dv;
+  void resize(std::size_t n) {
+    for (auto* v : {&dx, &dy, &r, &h, &inverse_omega, &volume, &depth, &celerity, &du, &dv})
+      v->resize(n);
+  }
+};
+
 template <class K>
 void surface_acceleration_with(const particles::SweParticles& p,
                                const neighbors::NeighborList& nl, double g, double alpha,
                                std::span<double> ax, std::span<double> ay) {
-  parallel_for(p.fluid_count(), [&](std::size_t i) {
-    const double hi = p.smoothing_length[i];
-    const double inverse_omega_i = 1.0 / p.omega[i];
-    const double ci = std::sqrt(g * p.depth[i]);
-    double sx = 0.0, sy = 0.0;
-    for (const std::uint32_t j : nl.row(i)) {
-      // e = (x_i - x_j) / r, the direction in which j pushes i.
-      const double dx = p.x[i] - p.x[j], dy = p.y[i] - p.y[j];
-      const double r = std::sqrt(dx * dx + dy * dy);
-      if (!(r > kCoincident)) continue;
-      const double hj = p.smoothing_length[j];
-      const double slope_i = K::dw_dr(r, hi), slope_j = K::dw_dr(r, hj);  // <= 0
-      // -(g/2) V_j (W'_i / Omega_i + W'_j / Omega_j) along e: pressure pushes i away from j.
-      double push = -0.5 * g * (slope_i * inverse_omega_i + slope_j / p.omega[j]);
-      const double approach = ((p.u[i] - p.u[j]) * dx + (p.v[i] - p.v[j]) * dy) / r;
-      if (approach < 0.0) {
-        const double cj = std::sqrt(g * p.depth[j]);
-        const double signal = ci + cj - kSignalJump * approach;
-        const double pi = -alpha * signal * approach / (p.depth[i] + p.depth[j]);  // > 0
-        push -= pi * 0.5 * (slope_i + slope_j);
+  // c = sqrt(g d) once per particle (ghosts included), not once per pair.
+  std::vector<double> celerity(p.size());
+  parallel_for(p.size(), [&](std::size_t k) { celerity[k] = std::sqrt(g * p.depth[k]); });
+#pragma omp parallel if (p.fluid_count() > static_cast<std::size_t>(parallel_threshold))
+  {
+    PairBuffer b;
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+      const auto row = nl.row(i);
+      const std::size_t count = row.size();
+      b.resize(count);
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::uint32_t j = row[k];
+        b.dx[k] = p.x[i] - p.x[j];  // e = (x_i - x_j) / r: the direction j pushes i
+        b.dy[k] = p.y[i] - p.y[j];
+        b.h[k] = p.smoothing_length[j];
+        b.inverse_omega[k] = 1.0 / p.omega[j];
+        b.volume[k] = p.volume[j];
+        b.depth[k] = p.depth[j];
+        b.celerity[k] = celerity[j];
+        b.du[k] = p.u[i] - p.u[j];
+        b.dv[k] = p.v[i] - p.v[j];
       }
-      const double f = p.volume[j] * push / r;
-      sx += f * dx;
-      sy += f * dy;
+      const double hi = p.smoothing_length[i];
+      const double inverse_hi = 1.0 / hi;
+      const double slope_scale_i = K::sigma() * inverse_hi * inverse_hi * inverse_hi;
+      const double inverse_omega_i = 1.0 / p.omega[i];
+      const double ci = celerity[i], di = p.depth[i];
+      double sx = 0.0, sy = 0.0;
+#pragma omp simd reduction(+ : sx, sy)
+      for (std::size_t k = 0; k < count; ++k) {
+        const double r2 = b.dx[k] * b.dx[k] + b.dy[k] * b.dy[k];
+        const double r = std::sqrt(r2);
+        // Pairs closer than kCoincident have no direction and exert no force.
+        const bool apart = r > kCoincident;
+        const double inverse_r = apart ? 1.0 / r : 0.0;
+        const double inverse_hj = 1.0 / b.h[k];
+        const double slope_i = slope_scale_i * K::shape_slope(r * inverse_hi);  // dW/dr <= 0
+        const double slope_j =
+            K::sigma() * inverse_hj * inverse_hj * inverse_hj * K::shape_slope(r * inverse_hj);
+        // -(g/2) V_j (W'_i / Omega_i + W'_j / Omega_j) along e: pressure pushes i away from j.
+        double push = -0.5 * g * (slope_i * inverse_omega_i + slope_j * b.inverse_omega[k]);
+        // Dissipation on approaching pairs only: w < 0; zero for w >= 0 (see the header).
+        const double w = std::min(0.0, (b.du[k] * b.dx[k] + b.dv[k] * b.dy[k]) * inverse_r);
+        const double signal = ci + b.celerity[k] - kSignalJump * w;
+        const double pi = -alpha * signal * w / (di + b.depth[k]);  // >= 0
+        push -= pi * 0.5 * (slope_i + slope_j);
+        const double f = b.volume[k] * push * inverse_r;
+        sx += f * b.dx[k];
+        sy += f * b.dy[k];
+      }
+      ax[i] = sx;
+      ay[i] = sy;
     }
-    ax[i] = sx;
-    ay[i] = sy;
-  });
+  }
 }
 
 }  // namespace
@@ -129,11 +198,16 @@ bool ConservativeScheme::sum_depth(particles::SweParticles& p,
   std::vector<std::uint8_t> outgrown(n, 0);
   with_kernel_shape(kernel_.shape(), [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    parallel_for(n, [&](std::size_t i) {
-      const double searched_h = p.smoothing_length[i];
-      iterations_[i] = sum_depth_at<K>(p, nl, i, kappa_, max_area_ratio_);
-      outgrown[i] = p.smoothing_length[i] > searched_h * (1.0 + kSearchMargin);
-    });
+#pragma omp parallel if (n > static_cast<std::size_t>(parallel_threshold))
+    {
+      RowBuffer row;
+#pragma omp for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double searched_h = p.smoothing_length[i];
+        iterations_[i] = sum_depth_at<K>(p, nl, i, kappa_, max_area_ratio_, row);
+        outgrown[i] = p.smoothing_length[i] > searched_h * (1.0 + kSearchMargin);
+      }
+    }
   });
   last_iterations_ = 0;
   last_most_iterations_ = 0;

@@ -528,6 +528,7 @@ void Simulation::update_fields(bool sort) {
     if (scheme_->sum_depth(particles_, neighbor_list_)) break;
     particles_.drop_ghosts();
   }
+  neighbor_counts_.add(neighbor_list_);
   // The force reads the ghosts' depth, area and radius.
   boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
 }

@@ -41,6 +41,7 @@
 #include "swemps/neighbors/cell_list.hpp"
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/swe/effect.hpp"
+#include "swemps/swe/neighbor_counts.hpp"
 #include "swemps/swe/operators.hpp"
 #include "swemps/swe/scheme.hpp"
 #include "swemps/swe/state_record.hpp"
@@ -141,6 +142,9 @@ class Simulation {
   std::size_t wall_reflections() const { return wall_reflections_; }
   const PhaseTimes& phase_times() const { return phase_times_; }
   std::vector<EffectTime> effect_times() const;
+  // The neighbour-row lengths of every summation since this simulation was made (a restored
+  // one counts from its restart: a diagnostic, not state).
+  const NeighborCounts& neighbor_counts() const { return neighbor_counts_; }
 
   // Everything the next step depends on: the fluid particles with all their fields (their
   // radii included: the next summation starts from them), time, step count, when the
@@ -199,6 +203,7 @@ class Simulation {
   std::vector<std::uint32_t> order_;
   VolumeLedger ledger_;
   PhaseTimes phase_times_;
+  NeighborCounts neighbor_counts_;
   double time_s_ = 0.0;
   std::size_t steps_ = 0, particle_steps_ = 0, wall_reflections_ = 0;
   std::size_t last_sort_step_ = 0, sorted_count_ = 0;  // when the particles were last sorted
