@@ -13,6 +13,8 @@
 namespace swemps::scenario::json_reading {
 
 const std::string kMissing = "nothing (key missing)";
+const std::string kMetres = "metres";
+const std::string kSeconds = "seconds";
 
 // ---------------------------------------------------------------------------------------------
 // Text helpers

@@ -21,6 +21,8 @@ using json = nlohmann::json;
 using Names = std::vector<std::string_view>;
 
 extern const std::string kMissing;  // the "found" of a required key that is absent
+extern const std::string kMetres;   // units named in what a number should be
+extern const std::string kSeconds;
 
 // ---------------------------------------------------------------------------------------------
 // Text for messages

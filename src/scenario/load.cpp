@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "json_reading.hpp"
+#include "load_sections.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/kernels/any_kernel.hpp"
 #include "swemps/scenario/scenario.hpp"
@@ -89,14 +90,7 @@ using namespace json_reading;
 
 namespace {
 
-const std::string kMetres = "metres";
-const std::string kSeconds = "seconds";
 
-// An interval-generated output list (or series) longer than this is surely a typo.
-constexpr double kMaxOutputTimes = 1e6;
-// Each written grid field of this many cells takes gigabytes; a finer grid is surely a typo,
-// better reported here than by the allocator.
-constexpr double kMaxGridCells = 1e9;
 
 // ---------------------------------------------------------------------------------------------
 // Points and boxes
@@ -105,15 +99,22 @@ using json_reading::fmt;  // the overload for numbers, beside this one for point
 
 std::string fmt(const Point& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ")"; }
 
+}  // namespace
+
 std::array<double, 2> pair(const json& v, const std::string& path, const std::string& expected) {
   if (!v.is_array() || v.size() != 2) throw ScenarioError(path, describe(v), expected);
   return {finite_number(v[0], element_path(path, 0), expected),
           finite_number(v[1], element_path(path, 1), expected)};
 }
 
+namespace {
+
+
 // `coordinates` names the pair, "x, y" for map points, "x, z" for a bed profile.
+}  // namespace
+
 std::vector<Point> points(const json& v, const std::string& path, std::size_t min_count,
-                          const std::string& coordinates = "x, y") {
+                          const std::string& coordinates) {
   const std::string expected = "an array of at least " + std::to_string(min_count) + " [" +
                                coordinates + "] points (metres)";
   if (!v.is_array() || v.size() < min_count) throw ScenarioError(path, describe(v), expected);
@@ -126,6 +127,9 @@ std::vector<Point> points(const json& v, const std::string& path, std::size_t mi
   return out;
 }
 
+namespace {
+
+
 // Requires o[key] > o[lower_key] = lower; used for the x_min < x_max pairs of boxes.
 void check_above(const Object& o, std::string_view key, double value, std::string_view lower_key,
                  double lower) {
@@ -135,7 +139,8 @@ void check_above(const Object& o, std::string_view key, double value, std::strin
       "a number > " + std::string(lower_key) + " (metres)");
 }
 
-// The four box keys of `o`, all required, min < max on both axes.
+}  // namespace
+
 Rectangle box(const Object& o) {
   const std::string expected = "a number (metres)";
   Rectangle r;
@@ -149,6 +154,9 @@ Rectangle box(const Object& o) {
 }
 
 const Names kBoxKeys = {"x_min", "x_max", "y_min", "y_max"};
+
+namespace {
+
 const std::string kBoxExpected = "an object with x_min, x_max, y_min, y_max (metres)";
 
 Rectangle read_box(const json& v, const std::string& path) {
@@ -191,6 +199,8 @@ double signed_area(const std::vector<Point>& poly) {
   return 0.5 * twice;
 }
 
+}  // namespace
+
 Rectangle bounding_box(const std::vector<Point>& pts) {
   Rectangle r{pts[0][0], pts[0][0], pts[0][1], pts[0][1]};
   for (const Point& p : pts) {
@@ -202,7 +212,11 @@ Rectangle bounding_box(const std::vector<Point>& pts) {
   return r;
 }
 
+namespace {
+
 // Consecutive points must differ; for a polygon the last one also precedes the first.
+}  // namespace
+
 void check_distinct_neighbours(const std::vector<Point>& pts, const std::string& path,
                                bool closed) {
   const std::size_t n = pts.size();
@@ -218,6 +232,9 @@ void check_distinct_neighbours(const std::vector<Point>& pts, const std::string&
                : "a point different from the one before it");
   }
 }
+
+namespace {
+
 
 // A simple polygon: no two edges meet except neighbours at their shared vertex.
 void check_simple(const std::vector<Point>& poly, const std::string& path) {
@@ -398,6 +415,8 @@ std::filesystem::path resolve_file(const std::string& text, const std::filesyste
 }
 
 // o[key], a required non-empty string naming a file; `what` says what the file holds.
+}  // namespace
+
 std::filesystem::path file_path(const Object& o, std::string_view key, const std::string& what,
                                 const std::filesystem::path& base_dir) {
   const std::string expected = "a path to " + what + " (relative to the scenario's folder)";
@@ -408,6 +427,9 @@ std::filesystem::path file_path(const Object& o, std::string_view key, const std
   }
   return resolve_file(v->get<std::string>(), base_dir);
 }
+
+namespace {
+
 
 // o["crs"], the CRS a raster is warped to; empty when not given. Whether GDAL knows it is
 // found out when the raster is read.
@@ -720,145 +742,6 @@ std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   return s;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Inflow and outflow
-
-double smallest_spacing(const std::vector<WaterBody>& water) {
-  double s = water.front().spacing_m;
-  for (const WaterBody& w : water) s = std::min(s, w.spacing_m);
-  return s;
-}
-
-std::vector<std::array<double, 2>> read_hydrograph(const json& v, const std::string& path) {
-  const std::string expected = "an array of at least 1 [time, discharge] point (s, m^3/s)";
-  if (!v.is_array() || v.empty()) throw ScenarioError(path, describe(v), expected);
-  std::vector<std::array<double, 2>> out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string at = element_path(path, i);
-    const auto point = pair(v[i], at, "a [time, discharge] pair of numbers (s, m^3/s)");
-    if (!out.empty() && !(point[0] > out.back()[0])) {
-      throw ScenarioError(element_path(at, 0), "t = " + fmt(point[0]),
-                          "a time greater than the previous point's " + fmt(out.back()[0]) +
-                              " (times strictly increasing, seconds)");
-    }
-    if (point[1] < 0.0) {
-      throw ScenarioError(element_path(at, 1), fmt(point[1]), "a discharge >= 0 (m^3/s)");
-    }
-    out.push_back(point);
-  }
-  return out;
-}
-
-Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
-                   const std::vector<WaterBody>& water, const std::filesystem::path& base_dir) {
-  const Object o(v, path,
-                 {"name", "line", "hydrograph", "hydrograph_csv", "spacing", "depth", "direction"},
-                 "an object with a \"line\" and a \"hydrograph\" or \"hydrograph_csv\"");
-  Inflow in;
-  in.name =
-      optional_string(o, "name", "a non-empty string").value_or("inflow " + std::to_string(index));
-  if (in.name.empty()) {
-    throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
-  }
-
-  const std::string line_expected = "an array of exactly 2 [x, y] points (metres)";
-  const json* line = o.find("line");
-  if (line == nullptr) throw ScenarioError(o.path("line"), kMissing, line_expected);
-  if (!line->is_array() || line->size() != 2) {
-    throw ScenarioError(o.path("line"), describe(*line), line_expected);
-  }
-  const std::vector<Point> ends = points(*line, o.path("line"), 2);
-  check_distinct_neighbours(ends, o.path("line"), false);
-  in.line = {ends[0], ends[1]};
-
-  const std::string one_source = "exactly one of \"hydrograph\" or \"hydrograph_csv\"";
-  const json* table = o.find("hydrograph");
-  const json* csv = o.find("hydrograph_csv");
-  if (table && csv)
-    throw ScenarioError(path, "both \"hydrograph\" and \"hydrograph_csv\"", one_source);
-  if (!table && !csv) {
-    throw ScenarioError(path, "neither \"hydrograph\" nor \"hydrograph_csv\"", one_source);
-  }
-  if (table) {
-    in.hydrograph = read_hydrograph(*table, o.path("hydrograph"));
-  } else {
-    in.hydrograph = file_path(o, "hydrograph_csv", "a CSV file of times and discharges", base_dir);
-  }
-
-  // Inflow particles as fine as the finest water keep the particle sizes alike.
-  if (water.empty()) {
-    in.spacing_m = positive(o, "spacing", "metres; required when the scene has no water");
-  } else {
-    in.spacing_m = positive(o, "spacing", kMetres, smallest_spacing(water));
-  }
-  if (o.find("depth") != nullptr) in.depth_m = positive(o, "depth", kMetres);
-
-  if (const json* direction = o.find("direction")) {
-    const auto d = pair(*direction, o.path("direction"), "a [dx, dy] pair of numbers");
-    const double along_x = in.line[1][0] - in.line[0][0];
-    const double along_y = in.line[1][1] - in.line[0][1];
-    const double norm = std::hypot(d[0], d[1]);
-    const double length = std::hypot(along_x, along_y);
-    const std::string normal = "[" + fmt(-along_y / length) + ", " + fmt(along_x / length) + "]";
-    const std::string expected =
-        "a direction normal to the line, such as " + normal + " or its opposite";
-    if (!(norm > 0.0) || !std::isfinite(norm)) {
-      throw ScenarioError(o.path("direction"), "a zero or unbounded vector", expected);
-    }
-    const double cosine = (d[0] * along_x + d[1] * along_y) / (norm * length);
-    if (std::abs(cosine) > 1e-9) {
-      const double degrees = std::acos(std::clamp(cosine, -1.0, 1.0)) * 180.0 / std::numbers::pi;
-      throw ScenarioError(
-          o.path("direction"),
-          "[" + fmt(d[0]) + ", " + fmt(d[1]) + "], at " + fmt(degrees) + " degrees to the line",
-          expected);
-    }
-    in.direction = d;
-  }
-  return in;
-}
-
-std::vector<Inflow> read_inflows(const json* v, const std::vector<WaterBody>& water,
-                                 const std::filesystem::path& base_dir) {
-  if (v == nullptr) return {};
-  const std::string path = "/inflow";
-  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of inflow lines");
-  std::vector<Inflow> out;
-  for (std::size_t i = 0; i < v->size(); ++i) {
-    Inflow in = read_inflow((*v)[i], element_path(path, i), i, water, base_dir);
-    // Names tell the inflows apart in the run's report.
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      if (out[k].name != in.name) continue;
-      throw ScenarioError(
-          member_path(element_path(path, i), "name"),
-          "the name " + literal(in.name) + " again (inflow " + std::to_string(k) + " has it)",
-          "a name no other inflow has");
-    }
-    out.push_back(std::move(in));
-  }
-  return out;
-}
-
-std::vector<Outflow> read_outflows(const json* v) {
-  if (v == nullptr) return {};
-  const std::string path = "/outflow";
-  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of outflow lines");
-  std::vector<Outflow> out;
-  for (std::size_t i = 0; i < v->size(); ++i) {
-    const Object o((*v)[i], element_path(path, i), {"line"}, "an object with a \"line\"");
-    const json* line = o.find("line");
-    if (line == nullptr) {
-      throw ScenarioError(o.path("line"), kMissing,
-                          "an array of at least 2 [x, y] points (metres)");
-    }
-    Outflow outflow{points(*line, o.path("line"), 2)};
-    check_distinct_neighbours(outflow.line, o.path("line"), false);
-    out.push_back(std::move(outflow));
-  }
-  return out;
-}
-
-// With a raster bed the scene's CRS is the bed's and every other raster is warped to it;
 // without one, the rasters that name a CRS must name the same, for the scene has one CRS.
 void check_crs_keys(const Scenario& s) {
   std::vector<std::pair<std::string, std::string>> given;  // (JSON path, CRS)
@@ -888,333 +771,6 @@ void check_crs_keys(const Scenario& s) {
   }
 }
 
-// ---------------------------------------------------------------------------------------------
-// Navier-Stokes
-
-// An integer within [low, high] written as a JSON number, such as 1000 or 1e3.
-int whole_number(const Object& o, std::string_view key, int low, int high,
-                 const std::string& meaning, int fallback) {
-  const std::string expected = "a whole number from " + std::to_string(low) + " to " +
-                               std::to_string(high) + " (" + meaning + ")";
-  const double x = number(o, key, expected, fallback);
-  if (x != std::floor(x) || x < low || x > high) {
-    throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
-  }
-  return static_cast<int>(x);
-}
-
-Names kernel_names() {
-  const auto names = kernels::kernel_type_names();
-  return Names(names.begin(), names.end());
-}
-
-ns::KernelChoice read_kernel(const json& v, const std::string& path) {
-  const Object o(v, path, {"type", "support", "kappa", "theta"},
-                 "an object with a kernel \"type\" and optionally \"support\", \"kappa\" and "
-                 "\"theta\"");
-  ns::KernelChoice k;
-  const std::string_view name =
-      choice(o, "type", kernel_names(), kernels::kernel_type_name(k.spec.type));
-  k.spec.type = *kernels::kernel_type_from_name(name);
-  // Within one spacing a lattice particle has no neighbour at all; beyond eight a 3D support
-  // holds thousands, and the run would crawl for no gain in accuracy.
-  k.support_spacings = in_range(o, "support", 1.0, true, 8.0, false,
-                                "the cut-off distance in particle spacings", k.support_spacings);
-  // kappa shapes both hyperbolic kernels and theta only the MPS one; elsewhere a value would
-  // be silently ignored, so it is refused.
-  const bool hyperbolic = k.spec.type == kernels::KernelType::hyperbolic_mps ||
-                          k.spec.type == kernels::KernelType::hyperbolic_sph;
-  if (o.find("kappa") != nullptr) {
-    if (!hyperbolic) {
-      throw ScenarioError(o.path("kappa"), "a \"kappa\" for the " + literal(name) + " kernel",
-                          "no \"kappa\" here (it shapes the \"hyperbolic\" and "
-                          "\"hyperbolic-sph\" kernels)");
-    }
-    k.spec.kappa = positive(o, "kappa", "the steepness of the hyperbolic bell");
-  }
-  if (o.find("theta") != nullptr) {
-    if (k.spec.type != kernels::KernelType::hyperbolic_mps) {
-      throw ScenarioError(o.path("theta"), "a \"theta\" for the " + literal(name) + " kernel",
-                          "no \"theta\" here (it is the \"hyperbolic\" kernel's w(0))");
-    }
-    k.spec.theta = positive(o, "theta", "the hyperbolic kernel's value at r = 0");
-  }
-  return k;
-}
-
-ns::PoissonSettings read_solver(const json* v, const std::string& path) {
-  const Object o(v ? *v : empty_object(), path, {"preconditioner", "tolerance", "max_iterations"},
-                 "an object");
-  ns::PoissonSettings s;
-  const std::string_view preconditioner =
-      choice(o, "preconditioner", {"incomplete-cholesky", "diagonal"}, "incomplete-cholesky");
-  s.preconditioner = preconditioner == "diagonal" ? ns::Preconditioner::diagonal
-                                                  : ns::Preconditioner::incomplete_cholesky;
-  s.relative_tolerance =
-      in_range(o, "tolerance", 0.0, true, 1.0, true,
-               "the relative residual |b - A p| / |b| the solve stops at", s.relative_tolerance);
-  s.max_iterations = whole_number(o, "max_iterations", 1, 1000000,
-                                  "conjugate-gradient iterations per solve", s.max_iterations);
-  return s;
-}
-
-std::optional<ns::Collision> read_collision(const json* v, const std::string& path) {
-  if (v == nullptr) return ns::Collision{};
-  if (v->is_boolean()) {
-    return v->get<bool>() ? std::optional<ns::Collision>(ns::Collision{}) : std::nullopt;
-  }
-  const Object o(*v, path, {"distance", "restitution"},
-                 "false (no collisions), true (the defaults) or an object with \"distance\" and "
-                 "\"restitution\"");
-  ns::Collision c;
-  c.distance_spacings = in_range(o, "distance", 0.0, true, 1.0, true,
-                                 "the closest approach in particle spacings", c.distance_spacings);
-  c.restitution = in_range(o, "restitution", 0.0, false, 1.0, false,
-                           "the share of the approach speed kept", c.restitution);
-  return c;
-}
-
-// A length that must be a whole number of lattice spacings (to 1e-6 of one, as the tank's
-// lattice takes it).
-bool whole_spacings(double length, double spacing) {
-  const double n = length / spacing;
-  return n >= 1.0 - 1e-6 && std::abs(n - std::round(n)) <= 1e-6;
-}
-
-std::optional<NsSpec> read_ns(const json* v, double gravity) {
-  if (v == nullptr) return std::nullopt;
-  const Object o(*v, "/ns",
-                 {"spacing", "tank_height", "density", "viscosity", "courant", "max_time_step",
-                  "pressure_kernel", "velocity_kernel", "free_surface_beta", "source",
-                  "source_gamma", "solver", "collision"},
-                 "an object with at least the particle \"spacing\"");
-  NsSpec spec;
-  ns::Settings& s = spec.settings;
-  s.gravity_m_s2 = gravity;
-  s.spacing_m = positive(o, "spacing", kMetres);
-  if (o.find("tank_height") != nullptr) {
-    const double height = positive(o, "tank_height", kMetres);
-    if (!whole_spacings(height, s.spacing_m)) {
-      throw ScenarioError(o.path("tank_height"),
-                          describe(*o.find("tank_height")) + ", which is " +
-                              fmt(height / s.spacing_m) + " spacings of " + fmt(s.spacing_m) + " m",
-                          "a whole number of spacings (metres; the walls stand on the lattice)");
-    }
-    spec.tank_height_m = height;
-  }
-  s.density_kg_m3 = positive(o, "density", "kg/m^3", s.density_kg_m3);
-  s.kinematic_viscosity_m2_s =
-      non_negative(o, "viscosity", "m^2/s, kinematic", s.kinematic_viscosity_m2_s);
-  s.courant =
-      in_range(o, "courant", 0.0, true, 1.0, false, "the Courant number u dt / l_0", s.courant);
-  s.max_time_step_s = positive(o, "max_time_step", kSeconds, s.max_time_step_s);
-  if (const json* kernel = o.find("pressure_kernel")) {
-    s.pressure_kernel = read_kernel(*kernel, o.path("pressure_kernel"));
-  }
-  // One kernel for both sides unless the scene splits them (Kakuda's choice).
-  const json* velocity_kernel = o.find("velocity_kernel");
-  s.velocity_kernel = velocity_kernel ? read_kernel(*velocity_kernel, o.path("velocity_kernel"))
-                                      : s.pressure_kernel;
-  s.free_surface_beta = in_range(o, "free_surface_beta", 0.0, true, 1.0, true,
-                                 "the share of n0 below which a particle is on the free surface",
-                                 s.free_surface_beta);
-  const std::string_view source =
-      choice(o, "source", {"number-density", "mixed"}, "number-density");
-  if (source == "mixed") {
-    s.source = ns::SourceTerm::mixed;
-    s.source_gamma = in_range(o, "source_gamma", 0.0, false, 1.0, false,
-                              "the share of the compression relaxed per step", s.source_gamma);
-  } else if (o.find("source_gamma") != nullptr) {
-    throw ScenarioError(o.path("source_gamma"),
-                        "a \"source_gamma\" with the \"number-density\" source",
-                        "no \"source_gamma\" here (it goes with \"source\": \"mixed\")");
-  }
-  s.solver = read_solver(o.find("solver"), o.path("solver"));
-  s.collision = read_collision(o.find("collision"), o.path("collision"));
-  return spec;
-}
-
-// Twice the deepest water, rounded up to whole spacings: room for the splash of a dam break.
-void default_tank_height(Scenario& s) {
-  if (!s.ns || s.ns->tank_height_m) return;
-  double deepest = 0.0;
-  for (const WaterBody& w : s.water) {
-    if (const auto* uniform = std::get_if<UniformDepth>(&w.depth)) {
-      deepest = std::max(deepest, uniform->depth_m);
-    }
-  }
-  if (!(deepest > 0.0)) return;
-  const double l0 = s.ns->settings.spacing_m;
-  // The slack keeps a product such as 2 x 0.2 / 0.01 = 40.000000000000007 at 40 spacings.
-  s.ns->tank_height_m = std::ceil(2.0 * deepest / l0 - 1e-9) * l0;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Output
-
-std::vector<double> listed_times(const json& v, const std::string& path, double end_time) {
-  if (!v.is_array()) throw ScenarioError(path, describe(v), "an array of times (seconds)");
-  const std::string expected = "a time in (0, end_time = " + fmt(end_time) + "] (seconds)";
-  std::vector<double> out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const double t = finite_number(v[i], element_path(path, i), expected);
-    if (!(t > 0.0) || t > end_time) {
-      throw ScenarioError(element_path(path, i), describe(v[i]), expected);
-    }
-    out.push_back(t);
-  }
-  return out;
-}
-
-// interval, 2 interval, ... up to end_time; end_time itself is added by the caller. A multiple
-// within rounding of end_time is dropped so the run does not write two records a hair apart.
-std::vector<double> regular_times(const Object& o, double end_time) {
-  const double interval = positive(o, "interval", kSeconds);
-  if (end_time / interval > kMaxOutputTimes) {
-    throw ScenarioError(
-        o.path("interval"),
-        describe(*o.find("interval")) + ", giving " + fmt(end_time / interval) + " output times",
-        "an interval giving at most " + fmt(kMaxOutputTimes) + " output times (seconds)");
-  }
-  const double slack = 1e-9 * end_time;
-  std::vector<double> out;
-  for (std::size_t k = 1;; ++k) {
-    const double t = static_cast<double>(k) * interval;
-    if (t >= end_time - slack) break;
-    out.push_back(t);
-  }
-  return out;
-}
-
-std::vector<double> read_times(const Object& o, double end_time) {
-  const json* times = o.find("times");
-  const json* interval = o.find("interval");
-  if (times && interval) {
-    throw ScenarioError(o.path(), "both \"times\" and \"interval\"",
-                        "at most one of \"times\" or \"interval\"");
-  }
-  std::vector<double> out;
-  if (times) {
-    out = listed_times(*times, o.path("times"), end_time);
-  } else if (interval) {
-    out = regular_times(o, end_time);
-  }
-  out.push_back(end_time);  // the final state is always worth having
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
-void check_grid_cells(double spacing_m, const Rectangle& bounds, const std::string& path) {
-  const double cells =
-      ((bounds.x_max - bounds.x_min) / spacing_m) * ((bounds.y_max - bounds.y_min) / spacing_m);
-  if (cells > kMaxGridCells) {
-    throw ScenarioError(path, fmt(spacing_m) + ", giving about " + fmt(std::ceil(cells)) + " cells",
-                        "a spacing giving at most " + fmt(kMaxGridCells) + " grid cells (metres)");
-  }
-}
-
-// The finest particle spacing of the scene's water and inflows.
-double finest_spacing(const Scenario& scene) {
-  double s = std::numeric_limits<double>::infinity();
-  for (const WaterBody& w : scene.water) s = std::min(s, w.spacing_m);
-  for (const Inflow& in : scene.inflows) s = std::min(s, in.spacing_m);
-  return s;
-}
-
-GridSpec read_grid(const json* v, const std::string& path, const Scenario& scene) {
-  const Object o(v ? *v : empty_object(), path, {"spacing", "x_min", "x_max", "y_min", "y_max"},
-                 "an object");
-  GridSpec grid;
-  // A raster bed brings its own cells; elsewhere half the particle spacing resolves the
-  // particle field without empty cells between them. Model ns counts the particles standing
-  // in each cell instead: a cell must hold whole columns of them, or the depth map stripes.
-  if (o.find("spacing") != nullptr || !std::holds_alternative<RasterBedSpec>(scene.bed)) {
-    const double fallback =
-        scene.model == Model::ns ? 2.0 * scene.ns->settings.spacing_m : 0.5 * finest_spacing(scene);
-    grid.spacing_m = positive(o, "spacing", kMetres, fallback);
-  }
-
-  std::vector<std::string_view> present;
-  for (std::string_view key : kBoxKeys) {
-    if (o.find(key) != nullptr) present.push_back(key);
-  }
-  if (present.size() == kBoxKeys.size()) {
-    grid.bounds = box(o);
-    if (grid.spacing_m) check_grid_cells(*grid.spacing_m, *grid.bounds, o.path("spacing"));
-  } else if (!present.empty()) {
-    throw ScenarioError(path, "only " + join(present, false),
-                        "all four of x_min, x_max, y_min, y_max, or none (the domain)");
-  }
-  return grid;
-}
-
-std::filesystem::path read_output_path(const Object& o, const std::string& name,
-                                       const std::filesystem::path& base_dir) {
-  const std::string expected = "a file name or path (relative to the scenario's folder)";
-  const std::string text = optional_string(o, "path", expected).value_or(name + ".nc");
-  std::filesystem::path p(text);
-  if (text.empty() || !p.has_filename()) {
-    const std::string found = "a string " + literal(text);
-    throw ScenarioError(o.path("path"), text.empty() ? found : found + ", which names a folder",
-                        expected);
-  }
-  if (p.is_relative()) p = base_dir / p;
-  return std::filesystem::absolute(p).lexically_normal();
-}
-
-std::vector<Gauge> read_gauges(const json* v, const std::string& path) {
-  if (v == nullptr) return {};
-  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of gauges");
-  std::vector<Gauge> out;
-  for (std::size_t i = 0; i < v->size(); ++i) {
-    const Object o((*v)[i], element_path(path, i), {"name", "x", "y"},
-                   "an object with x, y and optionally a name");
-    Gauge g;
-    g.name =
-        optional_string(o, "name", "a non-empty string").value_or("gauge " + std::to_string(i));
-    if (g.name.empty()) {
-      throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
-    }
-    // The name is the gauge's id in the output file.
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      if (out[k].name != g.name) continue;
-      throw ScenarioError(
-          o.path("name"),
-          "the name " + literal(g.name) + " again (gauge " + std::to_string(k) + " has it)",
-          "a name no other gauge has");
-    }
-    g.position_m = {number(o, "x", "a number (metres)"), number(o, "y", "a number (metres)")};
-    out.push_back(std::move(g));
-  }
-  return out;
-}
-
-Output read_output(const json* v, const Scenario& scene, const std::filesystem::path& base_dir) {
-  const std::string path = "/output";
-  const Object o(
-      v ? *v : empty_object(), path,
-      {"path", "times", "interval", "grid", "particles", "gauges", "series_interval", "wet_depth"},
-      "an object");
-  Output out;
-  out.path = read_output_path(o, scene.name, base_dir);
-  out.times_s = read_times(o, scene.end_time_s);
-  out.grid = read_grid(o.find("grid"), o.path("grid"), scene);
-  out.write_particles = optional_bool(o, "particles", true);
-  out.gauges = read_gauges(o.find("gauges"), o.path("gauges"));
-  // 500 samples draw smooth gauge curves and time the flood to a fifth of a percent of the run.
-  out.series_interval_s = positive(o, "series_interval", kSeconds, scene.end_time_s / 500.0);
-  if (scene.end_time_s / out.series_interval_s > kMaxOutputTimes) {
-    throw ScenarioError(
-        o.path("series_interval"),
-        describe(*o.find("series_interval")) + ", giving " +
-            fmt(scene.end_time_s / out.series_interval_s) + " samples",
-        "an interval giving at most " + fmt(kMaxOutputTimes) + " samples (seconds)");
-  }
-  out.wet_depth_m = non_negative(o, "wet_depth", kMetres, out.wet_depth_m);
-  return out;
-}
-
 }  // namespace
 
 void check_within_domain(const Scenario& scene, const Rectangle& domain) {
@@ -1237,154 +793,6 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
   }
 }
 
-namespace {
-
-std::string unsupported(const std::string& what) {
-  return what + " is not supported with model ns";
-}
-
-// The tank is a box on the lattice: water boxes, each an axis-aligned rectangle of uniform
-// depth standing on the floor, at rest.
-void check_ns_water(const Scenario& s, double tank_height) {
-  for (std::size_t i = 0; i < s.water.size(); ++i) {
-    const WaterBody& w = s.water[i];
-    const std::string path = element_path("/water", i);
-    if (std::holds_alternative<LevelSurface>(w.depth)) {
-      throw ScenarioError(member_path(path, "fill"), "water filled to a level",
-                          "water given by \"depth\" (" + unsupported("a level fill") + ")");
-    }
-    if (std::holds_alternative<DepthRaster>(w.depth)) {
-      throw ScenarioError(member_path(path, "depth_raster"), "water depth from a raster",
-                          "water given by \"depth\" (" + unsupported("a depth raster") + ")");
-    }
-    // A rectangle is stored as its four corners; a polygon that is one passes too.
-    const Rectangle bb = bounding_box(w.polygon);
-    const bool rectangle =
-        w.polygon.size() == 4 &&
-        std::all_of(w.polygon.begin(), w.polygon.end(), [&](const Point& p) {
-          return (p[0] == bb.x_min || p[0] == bb.x_max) && (p[1] == bb.y_min || p[1] == bb.y_max);
-        });
-    if (!rectangle) {
-      throw ScenarioError(path,
-                          "a polygon of " + std::to_string(w.polygon.size()) +
-                              " vertices that is not an axis-aligned rectangle",
-                          "a \"rectangle\" (" + unsupported("any other shape") +
-                              ": the water starts as boxes in the tank)");
-    }
-    if (w.velocity_m_s[0] != 0.0 || w.velocity_m_s[1] != 0.0) {
-      throw ScenarioError(
-          member_path(path, "velocity"),
-          "a starting velocity [" + fmt(w.velocity_m_s[0]) + ", " + fmt(w.velocity_m_s[1]) + "]",
-          "water at rest, [0, 0] (" + unsupported("a starting velocity") + ")");
-    }
-    const double depth = std::get<UniformDepth>(w.depth).depth_m;
-    if (depth > tank_height * (1.0 + 1e-12)) {
-      throw ScenarioError("/ns/tank_height",
-                          fmt(tank_height) + " m, below the " + fmt(depth) + " m deep " + path,
-                          "a tank at least as high as the deepest water (metres)");
-    }
-  }
-}
-
-// The walls stand on the lattice, so the sides the tank takes from the domain must be whole
-// numbers of spacings; y only in 3D, where the tank has a width.
-void check_ns_domain(const Scenario& s) {
-  const double l0 = s.ns->settings.spacing_m;
-  const std::string expected =
-      std::string("a spacing that divides the domain's x side") +
-      (s.dimension == 3 ? " and y side" : "") +
-      " into whole numbers (metres; the tank's walls stand on the lattice)";
-  const std::array<std::pair<const char*, double>, 2> sides{
-      {{"x", s.domain.x_max - s.domain.x_min}, {"y", s.domain.y_max - s.domain.y_min}}};
-  for (int axis = 0; axis < (s.dimension == 3 ? 2 : 1); ++axis) {
-    const auto& [name, length] = sides[static_cast<std::size_t>(axis)];
-    if (whole_spacings(length, l0)) continue;
-    throw ScenarioError("/ns/spacing",
-                        fmt(l0) + ", which divides the domain's " + name + " side of " +
-                            fmt(length) + " m into " + fmt(length / l0) + " spacings",
-                        expected);
-  }
-}
-
-}  // namespace
-
-void check_ns_scene(const Scenario& s) {
-  if (!s.ns) {
-    throw ScenarioError("/ns", kMissing,
-                        "an \"ns\" block with at least the particle \"spacing\" (model ns runs "
-                        "on it)");
-  }
-  if (const auto* plane = std::get_if<PlaneBedSpec>(&s.bed)) {
-    if (plane->slope[0] != 0.0 || plane->slope[1] != 0.0) {
-      throw ScenarioError(
-          "/bed/plane/slope",
-          "a sloping plane [" + fmt(plane->slope[0]) + ", " + fmt(plane->slope[1]) + "]",
-          "slope [0, 0] (" + unsupported("a sloping bed") +
-              ": the tank's floor "
-              "is flat)");
-    }
-  } else if (std::holds_alternative<ProfileBedSpec>(s.bed)) {
-    throw ScenarioError("/bed/profile_x", "a bed profile",
-                        "no bed or a level \"plane\" (" + unsupported("a bed profile") +
-                            ": the tank's floor is flat)");
-  } else if (std::holds_alternative<RasterBedSpec>(s.bed)) {
-    throw ScenarioError("/bed/raster", "a raster bed",
-                        "no bed or a level \"plane\" (" + unsupported("a raster bed") +
-                            ": the tank's floor is flat)");
-  }
-  if (s.manning_n) {
-    throw ScenarioError("/friction", "bed friction",
-                        "no \"friction\" (" + unsupported("Manning friction") +
-                            "; the water's own viscosity is ns.viscosity)");
-  }
-  if (s.splitting) {
-    throw ScenarioError("/splitting", "particle splitting",
-                        "no \"splitting\" (" + unsupported("splitting") + ")");
-  }
-  if (!s.inflows.empty()) {
-    throw ScenarioError("/inflow", std::to_string(s.inflows.size()) + " inflow lines",
-                        "no \"inflow\" (" + unsupported("inflow") + ")");
-  }
-  if (!s.outflows.empty()) {
-    throw ScenarioError("/outflow", std::to_string(s.outflows.size()) + " outflow lines",
-                        "no \"outflow\" (" + unsupported("outflow") + ")");
-  }
-  if (s.water.empty()) {
-    throw ScenarioError("/water", "an empty array",
-                        "at least one water body (model ns starts from water in the tank)");
-  }
-  // Every body has a uniform depth here or fails first, so the default height exists then.
-  check_ns_water(s, s.ns->tank_height_m.value_or(std::numeric_limits<double>::infinity()));
-  check_ns_domain(s);
-}
-
-namespace {
-
-// "model", "dimension" and the "ns" block.
-void read_model(const Object& o, double gravity, Scenario& s) {
-  s.model = choice(o, "model", {"swe", "ns"}, "swe") == "ns" ? Model::ns : Model::swe;
-  s.ns = read_ns(o.find("ns"), gravity);
-  if (s.model == Model::ns && !s.ns) {
-    throw ScenarioError(o.path("ns"), kMissing,
-                        "an \"ns\" block with at least the particle \"spacing\" (model ns runs "
-                        "on it)");
-  }
-  if (o.find("dimension") == nullptr) return;
-  if (s.model != Model::ns && !s.ns) {
-    throw ScenarioError(o.path("dimension"),
-                        "a \"dimension\" in a shallow-water scene without an \"ns\" block",
-                        "no \"dimension\" here (it goes with \"model\": \"ns\" or an \"ns\" "
-                        "block)");
-  }
-  const std::string expected = "2 (a vertical x-z section along x) or 3 (x, y, z)";
-  const double d = number(o, "dimension", expected);
-  if (d != 2.0 && d != 3.0) {
-    throw ScenarioError(o.path("dimension"), describe(*o.find("dimension")), expected);
-  }
-  s.dimension = static_cast<int>(d);
-}
-
-}  // namespace
 
 Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {

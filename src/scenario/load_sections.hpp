@@ -1,0 +1,55 @@
+#pragma once
+// The sections of a scene file that load.cpp leaves to other files of the scenario module.
+// Internal to it: not part of the public headers.
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "json_reading.hpp"
+#include "swemps/scenario/scenario.hpp"
+
+namespace swemps::scenario {
+
+// Reading points and files (load.cpp): an [x, y] pair; an array of at least `min_count`
+// points (`coordinates` names the pair: "x, z" for a bed profile); consecutive points that
+// differ (a polygon's last one from its first too); a required file name resolved against
+// the scene's folder (`what` says what the file holds).
+std::array<double, 2> pair(const json_reading::json& v, const std::string& path,
+                           const std::string& expected);
+std::vector<Point> points(const json_reading::json& v, const std::string& path,
+                          std::size_t min_count, const std::string& coordinates = "x, y");
+void check_distinct_neighbours(const std::vector<Point>& pts, const std::string& path,
+                               bool closed);
+std::filesystem::path file_path(const json_reading::Object& o, std::string_view key,
+                                const std::string& what, const std::filesystem::path& base_dir);
+
+// The four box keys of `o`, all required, min < max on both axes (load.cpp).
+Rectangle box(const json_reading::Object& o);
+extern const json_reading::Names kBoxKeys;  // x_min, x_max, y_min, y_max
+
+// The smallest axis-aligned box around at least one point (load.cpp).
+Rectangle bounding_box(const std::vector<Point>& pts);
+
+// The "inflow" and "outflow" sections (load_flows.cpp); an inflow's spacing defaults to the
+// finest of the water's.
+std::vector<Inflow> read_inflows(const json_reading::json* v, const std::vector<WaterBody>& water,
+                                 const std::filesystem::path& base_dir);
+std::vector<Outflow> read_outflows(const json_reading::json* v);
+
+// The "output" section, read after everything it refers to (load_output.cpp).
+Output read_output(const json_reading::json* v, const Scenario& scene,
+                   const std::filesystem::path& base_dir);
+// A grid spacing over `bounds` must give at most a billion cells (load_output.cpp).
+void check_grid_cells(double spacing_m, const Rectangle& bounds, const std::string& path);
+
+// "model", "dimension" and the "ns" block (load_ns.cpp).
+void read_model(const json_reading::Object& o, double gravity, Scenario& s);
+// Model ns: the tank's height when the "ns" block gives none, twice the deepest water on the
+// lattice (load_ns.cpp).
+void default_tank_height(Scenario& s);
+
+}  // namespace swemps::scenario
