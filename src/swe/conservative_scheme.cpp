@@ -112,9 +112,10 @@ struct PairBuffer {
 template <class K>
 void surface_acceleration_with(const particles::SweParticles& p,
                                const neighbors::NeighborList& nl, double g, double alpha,
-                               std::span<double> ax, std::span<double> ay) {
+                               std::vector<double>& celerity, std::span<double> ax,
+                               std::span<double> ay) {
   // c = sqrt(g d) once per particle (ghosts included), not once per pair.
-  std::vector<double> celerity(p.size());
+  celerity.resize(p.size());
   parallel_for(p.size(), [&](std::size_t k) { celerity[k] = std::sqrt(g * p.depth[k]); });
 #pragma omp parallel if (p.fluid_count() > static_cast<std::size_t>(parallel_threshold))
   {
@@ -224,7 +225,7 @@ void ConservativeScheme::surface_acceleration(particles::SweParticles& p,
                                               std::span<double> accel_y) {
   with_kernel_shape(kernel_.shape(), [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    surface_acceleration_with<K>(p, nl, gravity_m_s2, dissipation_, accel_x, accel_y);
+    surface_acceleration_with<K>(p, nl, gravity_m_s2, dissipation_, celerity_, accel_x, accel_y);
   });
 }
 

@@ -71,6 +71,7 @@ class ConservativeScheme final : public Scheme {
   double kappa_, max_area_ratio_, dissipation_;
   std::size_t last_iterations_ = 0, last_most_iterations_ = 0;
   std::vector<std::uint32_t> iterations_;
+  std::vector<double> celerity_;  // sqrt(g d) per particle and ghost, kept between steps
 };
 
 }  // namespace swemps::swe
