@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -27,12 +28,33 @@ void check_distinct_neighbours(const std::vector<Point>& pts, const std::string&
 std::filesystem::path file_path(const json_reading::Object& o, std::string_view key,
                                 const std::string& what, const std::filesystem::path& base_dir);
 
+// Shapes and places (load.cpp): a box object; a simple polygon of at least 3 points; a box's
+// four corners; points that must lie inside the domain (`vertex_paths` points an error at the
+// vertex, `what` names the thing).
+Rectangle read_box(const json_reading::json& v, const std::string& path);
+std::vector<Point> read_polygon(const json_reading::json& v, const std::string& path);
+std::vector<Point> corners(const Rectangle& r);
+void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const std::string& path,
+                  bool vertex_paths, const std::string& what = "water lying");
+// o["crs"], empty when not given; "both "a" and "b"" or "all of ..." for keys that exclude
+// each other (load.cpp).
+std::string crs_text(const json_reading::Object& o);
+std::string several(const std::vector<std::string_view>& keys);
+
 // The four box keys of `o`, all required, min < max on both axes (load.cpp).
 Rectangle box(const json_reading::Object& o);
 extern const json_reading::Names kBoxKeys;  // x_min, x_max, y_min, y_max
 
 // The smallest axis-aligned box around at least one point (load.cpp).
 Rectangle bounding_box(const std::vector<Point>& pts);
+
+// The "water" section (load_water.cpp). `default_spacing_m`: the particle spacing of water
+// that gives none (model ns, whose lattice spacing is the "ns" block's); 0: each body must
+// give one. The scheme decides the default volume rule.
+std::vector<WaterBody> read_waters(const json_reading::json* v,
+                                   const std::optional<Rectangle>& domain, bool has_bed,
+                                   const std::filesystem::path& base_dir, double default_spacing_m,
+                                   swe::SchemeKind scheme);
 
 // The "inflow" and "outflow" sections (load_flows.cpp); an inflow's spacing defaults to the
 // finest of the water's.

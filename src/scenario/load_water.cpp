@@ -1,0 +1,196 @@
+// The "water" section of a scene file: bodies of water given by a uniform depth, a level
+// filled over the terrain or a depth raster, each with its shape, velocity, spacing and volume
+// rule. The rest of the scene is load.cpp's; the strict JSON reading is json_reading.hpp's.
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string_view>
+
+#include "json_reading.hpp"
+#include "load_sections.hpp"
+#include "swemps/scenario/scenario.hpp"
+
+namespace swemps::scenario {
+
+using namespace json_reading;
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Water
+
+struct ParsedWater {
+  WaterBody body;
+  bool volumes_given = false;
+};
+
+// The shape in `o`: exactly one of "rectangle" or "polygon", or neither when `optional`.
+// Checked against the domain when the domain is known.
+std::optional<std::vector<Point>> read_shape(const Object& o, bool optional,
+                                             const std::optional<Rectangle>& domain) {
+  const std::string one_shape = "exactly one of \"rectangle\" or \"polygon\"";
+  const json* rectangle = o.find("rectangle");
+  const json* polygon = o.find("polygon");
+  if (rectangle && polygon) {
+    throw ScenarioError(o.path(), "both \"rectangle\" and \"polygon\"",
+                        optional ? "at most one of \"rectangle\" or \"polygon\"" : one_shape);
+  }
+  if (!rectangle && !polygon) {
+    if (optional) return std::nullopt;
+    throw ScenarioError(o.path(), "neither \"rectangle\" nor \"polygon\"", one_shape);
+  }
+  std::vector<Point> poly;
+  if (rectangle) {
+    poly = corners(read_box(*rectangle, o.path("rectangle")));
+    if (domain) check_inside(poly, *domain, o.path("rectangle"), false);
+  } else {
+    poly = read_polygon(*polygon, o.path("polygon"));
+    if (domain) check_inside(poly, *domain, o.path("polygon"), true);
+  }
+  return poly;
+}
+
+// A key that does not belong to the way this body of water is given.
+void forbid(const Object& o, std::string_view key, std::string_view form,
+            const std::string& belongs) {
+  if (o.find(key) == nullptr) return;
+  throw ScenarioError(o.path(key),
+                      "the key " + literal(key) + " in water given by " + literal(form),
+                      "no " + literal(key) + " here (" + belongs + ")");
+}
+
+ParsedWater read_water(const json& v, const std::string& path,
+                       const std::optional<Rectangle>& domain, bool has_bed,
+                       const std::filesystem::path& base_dir, double default_spacing_m,
+                       swe::SchemeKind scheme) {
+  const Object o(v, path,
+                 {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth",
+                  "velocity", "spacing", "volumes", "rectangle", "polygon"},
+                 "an object describing a body of water");
+  std::vector<std::string_view> forms;
+  for (std::string_view key : {"depth", "fill", "depth_raster"}) {
+    if (o.find(key) != nullptr) forms.push_back(key);
+  }
+  if (forms.size() > 1) {
+    throw ScenarioError(path, several(forms),
+                        "exactly one of \"depth\", \"fill\" or \"depth_raster\" (how deep the "
+                        "water is)");
+  }
+  // Without any of the three the body is taken as the original form, whose depth is missing.
+  const std::string_view form = forms.empty() ? "depth" : forms.front();
+
+  ParsedWater parsed;
+  WaterBody& w = parsed.body;
+  const std::string with_fill = "it goes with \"fill\"";
+  const std::string with_raster = "it goes with \"depth_raster\"";
+  if (form == "depth") {
+    w.polygon = *read_shape(o, false, domain);
+    w.depth = UniformDepth{positive(o, "depth", kMetres)};
+    forbid(o, "surface_elevation", form, with_fill);
+    forbid(o, "min_depth", form, "it goes with \"fill\" or \"depth_raster\"");
+    forbid(o, "crs", form, with_raster);
+  } else if (form == "fill") {
+    const std::string inside = "with \"fill\" the shape goes inside it";
+    forbid(o, "rectangle", form, inside);
+    forbid(o, "polygon", form, inside);
+    forbid(o, "crs", form, with_raster);
+    if (!has_bed) {
+      throw ScenarioError(o.path("fill"), "\"fill\" in a scene without a \"bed\"",
+                          "a \"bed\" to fill (the depth is surface_elevation minus the bed "
+                          "elevation)");
+    }
+    const Object shape(*o.find("fill"), o.path("fill"), {"rectangle", "polygon"},
+                       "an object with exactly one of \"rectangle\" or \"polygon\"");
+    w.polygon = *read_shape(shape, false, domain);
+    w.depth = LevelSurface{
+        number(o, "surface_elevation", "a number (metres, the level of the water surface)")};
+  } else {
+    forbid(o, "surface_elevation", form, with_fill);
+    w.polygon = read_shape(o, true, domain).value_or(std::vector<Point>{});
+    w.depth = DepthRaster{RasterSpec{
+        file_path(o, "depth_raster", "a raster of water depths (metres)", base_dir), crs_text(o)}};
+  }
+  if (form != "depth") w.min_depth_m = non_negative(o, "min_depth", kMetres, w.min_depth_m);
+  if (const json* velocity = o.find("velocity")) {
+    w.velocity_m_s = pair(*velocity, o.path("velocity"), "a [u, v] pair of numbers (m/s)");
+  }
+
+  // A spacing wider than the shape would fill it with at most one row of particles. The
+  // default of model ns is the tank's lattice, which reports water it cannot fill itself.
+  const bool spacing_given = o.find("spacing") != nullptr || !(default_spacing_m > 0.0);
+  w.spacing_m = spacing_given ? positive(o, "spacing", kMetres) : default_spacing_m;
+  if (spacing_given && !w.polygon.empty()) {
+    const Rectangle bb = bounding_box(w.polygon);
+    const double width = bb.x_max - bb.x_min, height = bb.y_max - bb.y_min;
+    const double limit = std::min(width, height);
+    if (w.spacing_m > limit * (1.0 + 1e-12)) {
+      throw ScenarioError(
+          o.path("spacing"),
+          describe(*o.find("spacing")) + " for water " + fmt(width) + " m x " + fmt(height) + " m",
+          "a number > 0 and at most " + fmt(limit) +
+              " (the smaller side of the water's bounding box, metres)");
+    }
+  }
+
+  // Under the seed scheme water whose depth comes from the terrain starts at rest only when
+  // balanced, as eq 7 sums some 15 % too deep. The conservative scheme sums lattice water to
+  // its true depth, and balancing has no fixed point there (a particle's own volume sets its
+  // radius, not its depth): its water keeps the volume the terrain gives it.
+  const bool seed = scheme == swe::SchemeKind::seed;
+  const std::string_view volumes = choice(o, "volumes", {"geometric", "balanced"},
+                                          form == "depth" || !seed ? "geometric" : "balanced");
+  w.volumes = volumes == "balanced" ? VolumeRule::balanced : VolumeRule::geometric;
+  if (w.volumes == VolumeRule::balanced && !seed) {
+    throw ScenarioError(o.path("volumes"), "\"balanced\" under the conservative scheme",
+                        "\"geometric\" or no \"volumes\" (balancing corrects the seed scheme's "
+                        "eq 7 depth; the conservative scheme sums lattice water to its true "
+                        "depth; see \"scheme\")");
+  }
+  parsed.volumes_given = o.find("volumes") != nullptr;
+  return parsed;
+}
+
+// Missing or empty water is allowed here; parse() requires water or an inflow.
+// `default_spacing_m`: the particle spacing of water that gives none (model ns, whose lattice
+// spacing is the "ns" block's); 0: each body must give one.
+}  // namespace
+
+std::vector<WaterBody> read_waters(const json* v, const std::optional<Rectangle>& domain,
+                                   bool has_bed, const std::filesystem::path& base_dir,
+                                   double default_spacing_m, swe::SchemeKind scheme) {
+  const std::string path = "/water";
+  if (v == nullptr) return {};
+  if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of water bodies");
+  std::vector<ParsedWater> parsed;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    parsed.push_back(
+        read_water((*v)[i], element_path(path, i), domain, has_bed, base_dir, default_spacing_m,
+                   scheme));
+  }
+  // Balancing solves for all particles at once (their depths are sums over neighbours, across
+  // bodies too), so it is one choice for the whole scene.
+  const auto balanced = std::find_if(parsed.begin(), parsed.end(), [](const ParsedWater& p) {
+    return p.body.volumes == VolumeRule::balanced;
+  });
+  std::vector<WaterBody> out;
+  for (std::size_t i = 0; i < parsed.size(); ++i) {
+    WaterBody& body = parsed[i].body;
+    if (balanced != parsed.end() && body.volumes == VolumeRule::geometric) {
+      if (parsed[i].volumes_given) {
+        const auto other = static_cast<std::size_t>(balanced - parsed.begin());
+        throw ScenarioError(
+            member_path(element_path(path, i), "volumes"),
+            "\"geometric\" while " + element_path(path, other) + " is balanced",
+            "\"balanced\" or no \"volumes\" (balancing solves for all particles together, so "
+            "one balanced body balances them all)");
+      }
+      body.volumes = VolumeRule::balanced;
+    }
+    out.push_back(std::move(body));
+  }
+  return out;
+}
+
+}  // namespace swemps::scenario
