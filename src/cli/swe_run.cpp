@@ -254,8 +254,9 @@ void log_summary(const swe::Simulation& sim, const std::string& ending,
       sim.relative_volume_change());
   spdlog::info(
       "time per phase: sort {:.3f} s, neighbours {:.3f} s, depth {:.3f} s, gradient {:.3f} s, "
-      "integrate {:.3f} s, walls {:.3f} s, snapshots {:.3f} s, output {:.3f} s",
-      t.sort, t.neighbors, t.depth, t.gradient, t.integrate, t.walls, t.snapshots, output_s);
+      "shift {:.3f} s, integrate {:.3f} s, walls {:.3f} s, snapshots {:.3f} s, output {:.3f} s",
+      t.sort, t.neighbors, t.depth, t.gradient, t.shift, t.integrate, t.walls, t.snapshots,
+      output_s);
   if (const auto& n = sim.neighbor_counts(); !n.empty()) {
     spdlog::info("neighbours per particle over the run: min {}, median {}, max {}", n.min(),
                  n.median(), n.max());

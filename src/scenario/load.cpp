@@ -357,7 +357,8 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
                             std::optional<double>& shock_viscosity) {
   const Object o(v ? *v : empty_object(), "/numerics",
                  {"scheme", "cfl", "alpha_e", "max_area_ratio", "gradient", "kappa", "kernel",
-                  "dissipation", "min_time_step", "eddy_viscosity", "shock_viscosity"},
+                  "dissipation", "shifting", "min_time_step", "eddy_viscosity",
+                  "shock_viscosity"},
                  "an object");
   swe::Settings s;
   s.gravity_m_s2 = gravity;
@@ -374,7 +375,8 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
                             std::string(scheme) + " scheme; see \"scheme\")");
   };
   for (const auto* key : {"alpha_e", "gradient"}) only_under(key, seed, "seed");
-  for (const auto* key : {"kappa", "kernel", "dissipation"}) only_under(key, !seed, "conservative");
+  for (const auto* key : {"kappa", "kernel", "dissipation", "shifting"})
+    only_under(key, !seed, "conservative");
   s.cfl = bounded(o, "cfl", 0.0, true, 1.0, "the Courant number", s.cfl);
   // Below 1 the support holds too few neighbours for a stable gradient; above 3 the smoothing
   // is so wide that the answer no longer resolves the flow. Either is surely a mistake.
@@ -392,6 +394,10 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
   // 0 switches it off; above 2 it smears a bore over many particles: surely a mistake.
   s.dissipation = in_range(o, "dissipation", 0.0, false, 2.0, false,
                            "the pairwise dissipation coefficient alpha", s.dissipation);
+  // 0 switches it off; above 10 a particle would be shifted by more than its velocity moves
+  // it, surely a mistake.
+  s.shifting = in_range(o, "shifting", 0.0, false, 10.0, false,
+                        "the particle shifting coefficient beta", s.shifting);
   // Below 1 the bound would cut the areas of water that has merely thinned a little.
   s.max_area_ratio = bounded(o, "max_area_ratio", 1.0, false, 100.0,
                              "the largest area a kernel radius follows, in multiples of A_0",

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "swemps/neighbors/parallel.hpp"
+#include "swemps/swe/particle_shifting.hpp"
 
 namespace swemps::swe {
 
@@ -177,11 +178,14 @@ ConservativeScheme::ConservativeScheme(const Settings& settings)
     : kernel_(settings.kernel),
       kappa_(settings.kappa),
       max_area_ratio_(settings.max_area_ratio),
-      dissipation_(settings.dissipation) {
+      dissipation_(settings.dissipation),
+      shifting_(settings.shifting) {
   if (!(kappa_ > 0.0) || !std::isfinite(kappa_))
     throw std::invalid_argument("conservative scheme: kappa must be finite and > 0");
   if (!(dissipation_ >= 0.0) || !std::isfinite(dissipation_))
     throw std::invalid_argument("conservative scheme: dissipation must be finite and >= 0");
+  if (!(shifting_ >= 0.0) || !std::isfinite(shifting_))
+    throw std::invalid_argument("conservative scheme: shifting must be finite and >= 0");
 }
 
 void ConservativeScheme::choose_smoothing_lengths(particles::SweParticles& p) {
@@ -227,6 +231,15 @@ void ConservativeScheme::surface_acceleration(particles::SweParticles& p,
     using K = std::decay_t<decltype(kernel)>;
     surface_acceleration_with<K>(p, nl, gravity_m_s2, dissipation_, celerity_, accel_x, accel_y);
   });
+}
+
+bool ConservativeScheme::regularising_shift(const particles::SweParticles& p,
+                                            const neighbors::NeighborList& nl, double dt_s,
+                                            std::span<double> shift_x,
+                                            std::span<double> shift_y) {
+  if (shifting_ == 0.0) return false;
+  particle_shift(p, nl, kernel_.shape(), shifting_, dt_s, shift_x, shift_y);
+  return true;
 }
 
 }  // namespace swemps::swe

@@ -600,6 +600,13 @@ void Simulation::advance(double dt_s) {
     });
   }
   run_effects(Stage::velocity, dt_s);
+  bool shifted = false;
+  {
+    ScopedTimer timer(phase_times_.shift);
+    shift_x_.resize(n);
+    shift_y_.resize(n);
+    shifted = scheme_->regularising_shift(particles_, neighbor_list_, dt_s, shift_x_, shift_y_);
+  }
   {
     ScopedTimer timer(phase_times_.integrate);
     old_x_.resize(n);
@@ -614,8 +621,8 @@ void Simulation::advance(double dt_s) {
       for (std::size_t i = begin; i < end; ++i) {
         old_x_[i] = particles_.x[i];
         old_y_[i] = particles_.y[i];
-        particles_.x[i] += dt_s * particles_.u[i];
-        particles_.y[i] += dt_s * particles_.v[i];
+        particles_.x[i] += dt_s * particles_.u[i] + (shifted ? shift_x_[i] : 0.0);
+        particles_.y[i] += dt_s * particles_.v[i] + (shifted ? shift_y_[i] : 0.0);
         bad |= !(std::abs(particles_.x[i]) <= kLargest) | !(std::abs(particles_.y[i]) <= kLargest);
       }
       broken[chunk] = bad;

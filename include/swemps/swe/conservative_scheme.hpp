@@ -56,6 +56,10 @@ class ConservativeScheme final : public Scheme {
   void surface_acceleration(particles::SweParticles& p, const neighbors::NeighborList& nl,
                             double gravity_m_s2, std::span<double> accel_x,
                             std::span<double> accel_y) override;
+  // Particle shifting (particle_shifting.hpp) when Settings::shifting > 0.
+  bool regularising_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
+                          double dt_s, std::span<double> shift_x,
+                          std::span<double> shift_y) override;
 
   // Newton iterations of the last sum_depth(), summed over particles, and its largest count.
   std::size_t last_iterations() const { return last_iterations_; }
@@ -68,7 +72,7 @@ class ConservativeScheme final : public Scheme {
 
  private:
   ParticleKernel kernel_;
-  double kappa_, max_area_ratio_, dissipation_;
+  double kappa_, max_area_ratio_, dissipation_, shifting_;
   std::size_t last_iterations_ = 0, last_most_iterations_ = 0;
   std::vector<std::uint32_t> iterations_;
   std::vector<double> celerity_;  // sqrt(g d) per particle and ghost, kept between steps

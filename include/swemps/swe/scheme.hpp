@@ -44,6 +44,14 @@ class Scheme {
   virtual void surface_acceleration(particles::SweParticles& p, const neighbors::NeighborList& nl,
                                     double gravity_m_s2, std::span<double> accel_x,
                                     std::span<double> accel_y) = 0;
+  // A displacement of every fluid particle for a step of dt besides its velocity's, which keeps
+  // the arrangement even (particle shifting); false, and nothing written, for a scheme
+  // without one. Called with the fields of the last summation, before the particles move.
+  virtual bool regularising_shift(const particles::SweParticles& /*p*/,
+                                  const neighbors::NeighborList& /*nl*/, double /*dt_s*/,
+                                  std::span<double> /*shift_x*/, std::span<double> /*shift_y*/) {
+    return false;
+  }
 };
 
 std::unique_ptr<Scheme> make_scheme(const Settings& settings);

@@ -39,6 +39,9 @@ struct Settings {
   double kappa = 1.3;
   KernelShape kernel = KernelShape::cubic_spline;
   double dissipation = 1.0;
+  // Conservative scheme: beta of the particle shift D = beta h |u| dt (particle_shifting.hpp;
+  // 0: none).
+  double shifting = 2.0;
   double alpha_e = 1.3;  // seed scheme, eq 9: r_e = alpha_e sqrt(A_max)
   // eq 9's A_max counts a particle's area only up to this multiple of its creation area A_0,
   // so r_e never exceeds alpha_e sqrt(max_area_ratio A_0); likewise the conservative scheme's

@@ -63,7 +63,8 @@ class SimulationError : public std::runtime_error {
 };
 
 struct PhaseTimes {  // wall-clock seconds spent in each part of the step
-  double sort = 0.0, neighbors = 0.0, depth = 0.0, gradient = 0.0, integrate = 0.0, walls = 0.0;
+  double sort = 0.0, neighbors = 0.0, depth = 0.0, gradient = 0.0, shift = 0.0, integrate = 0.0;
+  double walls = 0.0;
   // The snapshots kept for a rollback after a breakdown (the checks for non-finite values ride
   // on passes the step makes anyway).
   double snapshots = 0.0;
@@ -199,7 +200,7 @@ class Simulation {
   std::vector<double> listed_smoothing_length_;
   neighbors::CellList<2> cells_;
   neighbors::NeighborList neighbor_list_;
-  std::vector<double> accel_x_, accel_y_, old_x_, old_y_;
+  std::vector<double> accel_x_, accel_y_, old_x_, old_y_, shift_x_, shift_y_;
   std::vector<std::uint32_t> order_;
   VolumeLedger ledger_;
   PhaseTimes phase_times_;
