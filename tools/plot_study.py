@@ -4,8 +4,9 @@
 Reads the CSV table a study writes and draws one PNG with two panels:
 
 - left: the error (fan L1 / h0 by default) against wall time, log-log. Each combination of
-  the knobs other than spacing (splitting, scheme, gradient, kappa, dissipation, cfl and
-  alpha_e, those that were swept) has its own colour and marker, with a line joining its spacings. The Pareto front
+  the knobs other than spacing (splitting, scheme, gradient, kappa, dissipation, shifting,
+  cfl and alpha_e, those that were swept) has its own colour and marker, with a line joining
+  its spacings. The Pareto front
   (runs no other run beats on both wall time and error) is a dashed step line with its runs
   circled.
 - right: the same error against particle spacing, log-log, with the observed order of
@@ -27,10 +28,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 # The knobs that, with the spacing, define a run; a series is one setting of all but spacing.
-# Tables written before the scheme knobs have no scheme, kappa or dissipation column; a
-# scheme's own knobs are empty in the other scheme's rows.
-SERIES_KNOBS = ["splitting_threshold", "scheme", "gradient", "kappa", "dissipation", "cfl",
-                "alpha_e"]
+# Tables written before the scheme knobs have no scheme, kappa, dissipation or shifting
+# column; a scheme's own knobs are empty in the other scheme's rows.
+SERIES_KNOBS = ["splitting_threshold", "scheme", "gradient", "kappa", "dissipation", "shifting",
+                "cfl", "alpha_e"]
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "*"]
 
 

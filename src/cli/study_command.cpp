@@ -352,7 +352,8 @@ std::string text_field(const std::string& text) {
 
 std::vector<std::string> table_columns() {
   std::vector<std::string> columns{"run",   "spacing_m",   "splitting_threshold", "scheme",
-                                   "gradient", "kappa", "dissipation", "cfl",   "alpha_e"};
+                                   "gradient", "kappa", "dissipation", "shifting",
+                                   "cfl",      "alpha_e"};
   for (const auto& f : kCountFields) columns.emplace_back(f.name);
   columns.emplace_back("peak_memory_mib");
   for (const auto& f : kErrorFields) columns.emplace_back(f.name);
@@ -376,6 +377,7 @@ std::string table_line(std::size_t index, const PlannedRun& run, const Row& row)
       seed ? study::gradient_name(scene.numerics.gradient) : std::string(),
       seed ? std::string() : number_text(scene.numerics.kappa),
       seed ? std::string() : number_text(scene.numerics.dissipation),
+      seed ? std::string() : number_text(scene.numerics.shifting),
       number_text(scene.numerics.cfl),
       seed ? number_text(scene.numerics.alpha_e) : std::string()};
   for (const auto& f : kCountFields) fields.push_back(number_text(r.*f.member));

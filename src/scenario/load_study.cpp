@@ -122,10 +122,11 @@ study::Sweep read_sweep(const Object& root) {
   const json* v = root.find("sweep");
   const std::string expected =
       "an object of knob value lists (spacing, splitting, scheme, gradient, kappa, "
-      "dissipation, cfl, alpha_e)";
+      "dissipation, shifting, cfl, alpha_e)";
   if (v == nullptr) throw ScenarioError(root.path("sweep"), kMissing, expected);
-  const Object o(*v, root.path("sweep"), {"spacing", "splitting", "scheme", "gradient", "kappa", "dissipation", "cfl",
-                  "alpha_e"},
+  const Object o(*v, root.path("sweep"),
+                 {"spacing", "splitting", "scheme", "gradient", "kappa", "dissipation", "shifting",
+                  "cfl", "alpha_e"},
                  expected);
   study::Sweep s;
   // Spacings beyond a kilometre are surely a typo for metres.
@@ -141,6 +142,8 @@ study::Sweep read_sweep(const Object& root) {
                               number_in(1.0, true, 2.5, "h = kappa sqrt(A)"));
   s.dissipation = read_axis<double>(o, "dissipation", "dissipation coefficients",
                                     number_in(0.0, true, 2.0, "the pairwise dissipation alpha"));
+  s.shifting = read_axis<double>(o, "shifting", "particle shifting coefficients",
+                                 number_in(0.0, true, 10.0, "the particle shifting beta"));
   // Unlike a scene, a study may push the Courant number past 1: finding where runs break
   // down is one thing a study is for.
   s.cfl = read_axis<double>(o, "cfl", "Courant numbers",

@@ -38,6 +38,7 @@ std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme) {
       axis(sweep.gradient, [](RunKnobs& k, swe::GradientVariant v) { k.gradient = v; }),
       axis(sweep.kappa, [](RunKnobs& k, double v) { k.kappa = v; }),
       axis(sweep.dissipation, [](RunKnobs& k, double v) { k.dissipation = v; }),
+      axis(sweep.shifting, [](RunKnobs& k, double v) { k.shifting = v; }),
       axis(sweep.cfl, [](RunKnobs& k, double v) { k.cfl = v; }),
       axis(sweep.alpha_e, [](RunKnobs& k, double v) { k.alpha_e = v; }),
   };
@@ -63,6 +64,7 @@ std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme) {
       seed_runs = true;
       k.kappa.reset();
       k.dissipation.reset();
+      k.shifting.reset();
     } else {
       conservative_runs = true;
       k.gradient.reset();
@@ -81,6 +83,7 @@ std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme) {
   require(seed_runs, sweep.alpha_e, "alpha_e", "seed");
   require(conservative_runs, sweep.kappa, "kappa", "conservative");
   require(conservative_runs, sweep.dissipation, "dissipation", "conservative");
+  require(conservative_runs, sweep.shifting, "shifting", "conservative");
   return kept;
 }
 
@@ -102,6 +105,7 @@ void apply(const RunKnobs& knobs, scenario::Scenario& scene) {
   if (knobs.gradient) scene.numerics.gradient = *knobs.gradient;
   if (knobs.kappa) scene.numerics.kappa = *knobs.kappa;
   if (knobs.dissipation) scene.numerics.dissipation = *knobs.dissipation;
+  if (knobs.shifting) scene.numerics.shifting = *knobs.shifting;
   if (knobs.cfl) scene.numerics.cfl = *knobs.cfl;
   if (knobs.alpha_e) scene.numerics.alpha_e = *knobs.alpha_e;
 }
@@ -171,6 +175,7 @@ std::string describe(const RunKnobs& knobs) {
   if (knobs.gradient) parts.push_back(gradient_name(*knobs.gradient));
   if (knobs.kappa) parts.push_back("kappa " + number_text(*knobs.kappa));
   if (knobs.dissipation) parts.push_back("dissipation " + number_text(*knobs.dissipation));
+  if (knobs.shifting) parts.push_back("shifting " + number_text(*knobs.shifting));
   if (knobs.cfl) parts.push_back("cfl " + number_text(*knobs.cfl));
   if (knobs.alpha_e) parts.push_back("alpha_e " + number_text(*knobs.alpha_e));
   if (parts.empty()) return "the scene as it is";

@@ -220,10 +220,13 @@ TEST_CASE("apply sets the given knobs on a scene and leaves the rest", "[study]"
   conservative.scheme = SchemeKind::conservative;
   conservative.kappa = 1.4;
   conservative.dissipation = 0.5;
+  conservative.shifting = 0.0;
   apply(conservative, scene);
   CHECK(scene.numerics.scheme == SchemeKind::conservative);
   CHECK(scene.numerics.kappa == 1.4);
   CHECK(scene.numerics.dissipation == 0.5);
+  CHECK(scene.numerics.shifting == 0.0);
+  CHECK(describe(conservative) == "conservative, kappa 1.4, dissipation 0.5, shifting 0");
 
   // Splitting on keeps the scene's own settings but the threshold; off removes it.
   scene.splitting->alpha_s = 0.5;
@@ -263,7 +266,7 @@ TEST_CASE("a study file arrives field by field, paths taken from its folder", "[
     "reference": {"ritter": {"dam_x": 25, "depth": 1, "reservoir_start_x": -1}},
     "sweep": {"spacing": [0.2, 0.1], "splitting": [null, 1.5], "scheme": ["seed"],
               "gradient": ["summation"], "kappa": [1.2, 1.4], "dissipation": [0, 1],
-              "cfl": [0.5, 2], "alpha_e": [1.3]},
+              "shifting": [0, 2], "cfl": [0.5, 2], "alpha_e": [1.3]},
     "profile_spacing_ratio": 8,
     "jobs": 3,
     "output": "out/table.csv"
@@ -281,14 +284,17 @@ TEST_CASE("a study file arrives field by field, paths taken from its folder", "[
   CHECK(s.sweep.gradient == std::vector<GradientVariant>{GradientVariant::summation});
   CHECK(s.sweep.kappa == std::vector<double>{1.2, 1.4});
   CHECK(s.sweep.dissipation == std::vector<double>{0.0, 1.0});
+  CHECK(s.sweep.shifting == std::vector<double>{0.0, 2.0});
   CHECK(s.sweep.cfl == std::vector<double>{0.5, 2.0});
   CHECK(s.profile_spacing_ratio == 8.0);
   CHECK(s.jobs == 3);
-  // Every run is a seed run, so kappa and dissipation would apply to none.
+  // Every run is a seed run, so kappa, dissipation and shifting would apply to none.
   CHECK_THROWS(expand(s.sweep, SchemeKind::conservative));
   auto seed_only = s.sweep;
   seed_only.kappa.clear();
   seed_only.dissipation.clear();
+  CHECK_THROWS(expand(seed_only, SchemeKind::conservative));  // shifting still
+  seed_only.shifting.clear();
   CHECK(expand(seed_only, SchemeKind::conservative).size() == 8);
 
   const auto defaults = parse(study_text(R"({"spacing": [0.1]})"));
@@ -321,6 +327,8 @@ TEST_CASE("broken study files are refused at the JSON path of the problem", "[st
       {"kappa out of range", study_text(R"({"kappa": [3]})"), "/sweep/kappa/0", "[1, 2.5]"},
       {"negative dissipation", study_text(R"({"dissipation": [-1]})"), "/sweep/dissipation/0",
        "[0, 2]"},
+      {"shifting out of range", study_text(R"({"shifting": [20]})"), "/sweep/shifting/0",
+       "[0, 10]"},
       {"missing reference", R"({"scene": "s.json", "sweep": {}})", "/reference", "ritter"},
       {"reference without depth", R"({"scene": "s.json", "sweep": {},
          "reference": {"ritter": {"dam_x": 4.65}}})",
@@ -383,6 +391,7 @@ TEST_CASE("swe-mps study runs every combination and tabulates cost and error", "
     CHECK(rows[k].at("scheme") == "seed");
     CHECK(rows[k].at("kappa").empty());  // the conservative scheme's knobs
     CHECK(rows[k].at("dissipation").empty());
+    CHECK(rows[k].at("shifting").empty());
     CHECK(number(rows[k], "alpha_e") == 1.3);
   }
   // And the seed scheme's knobs are blank in the conservative run's row.
@@ -391,6 +400,7 @@ TEST_CASE("swe-mps study runs every combination and tabulates cost and error", "
   CHECK(rows[2].at("alpha_e").empty());
   CHECK(number(rows[2], "kappa") == 1.3);
   CHECK(number(rows[2], "dissipation") == 1.0);
+  CHECK(number(rows[2], "shifting") == 2.0);
   for (const CsvRow& row : rows) {
     CHECK(row.at("status") == "ok");
     CHECK(row.at("message").empty());

@@ -34,6 +34,7 @@ struct RunKnobs {
   std::optional<swe::GradientVariant> gradient;  // seed scheme only
   std::optional<double> kappa;                    // conservative scheme only
   std::optional<double> dissipation;              // conservative scheme only
+  std::optional<double> shifting;                 // conservative scheme only
   std::optional<double> cfl;
   std::optional<double> alpha_e;  // seed scheme only
 
@@ -48,6 +49,7 @@ struct Sweep {
   std::vector<swe::GradientVariant> gradient;
   std::vector<double> kappa;
   std::vector<double> dissipation;
+  std::vector<double> shifting;
   std::vector<double> cfl;
   std::vector<double> alpha_e;
 };
