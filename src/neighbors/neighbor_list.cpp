@@ -130,26 +130,117 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   if (radii.size() != cells.point_count()) {
     throw std::invalid_argument("neighbour list: one radius per binned point needed");
   }
-  // Squared radii, of the targets by index and of the candidates in cell order (read with
-  // unit stride beside the cell-ordered coordinates).
-  std::vector<double> target_r2(target_count), candidate_r2(radii.size());
-  const auto order = cells.order();
-  double largest = 0.0;
-  for (std::size_t i = 0; i < radii.size(); ++i) largest = std::max(largest, radii[i]);
-  if (largest > cells.search_radius()) {
-    throw std::invalid_argument("neighbour list: radius larger than the cell width");
+  if (target_count > cells.point_count()) {
+    throw std::invalid_argument("neighbour list: more targets than binned points");
   }
+  // The cells hold every pair within `covered` in their usual block. Points with a larger
+  // radius ("wide" points) are reached two other ways: a wide target searches a block deep
+  // enough for the largest radius of all; a narrow target finds the wide points whose radius
+  // reaches it in a second, coarse cell list of the wide points alone. In the usual block a
+  // narrow target therefore takes a wide candidate only within its own radius, and the coarse
+  // pass only beyond it, so that no pair is listed twice.
+  const double covered = cells.search_radius();
+  const auto order = cells.order();
+  const auto c = cell_ordered_pointers(cells);
+  double largest = 0.0;
+  for (const double r : radii) largest = std::max(largest, r);
+  // Squared radii of the targets by index, and of the candidates in cell order (read with
+  // unit stride beside the cell-ordered coordinates), where a wide candidate counts 0.
+  std::vector<double> target_r2(target_count), candidate_r2(radii.size());
   parallel_for(target_count, [&](std::size_t i) { target_r2[i] = radii[i] * radii[i]; });
   parallel_for(radii.size(), [&](std::size_t k) {
-    candidate_r2[k] = radii[order[k]] * radii[order[k]];
+    const double r = radii[order[k]];
+    candidate_r2[k] = r > covered ? 0.0 : r * r;
   });
-  build_rows<Dim>(
-      cells, coords, target_count,
-      [&](std::size_t i, std::size_t k, double r2) {
-        if (r2 < 0.0) return target_r2[i] > 0.0;
-        return r2 < std::max(target_r2[i], candidate_r2[k]);
-      },
-      out);
+  std::vector<std::uint32_t> wide;
+  for (std::uint32_t j = 0; j < radii.size(); ++j)
+    if (radii[j] > covered) wide.push_back(j);
+  std::array<std::vector<double>, Dim> wide_coords;
+  for (int d = 0; d < Dim; ++d) {
+    wide_coords[d].resize(wide.size());
+    for (std::size_t m = 0; m < wide.size(); ++m) wide_coords[d][m] = coords[d][wide[m]];
+  }
+  CellList<Dim> wide_cells;
+  if (!wide.empty()) {
+    Coordinates<Dim> view;
+    for (int d = 0; d < Dim; ++d) view[d] = wide_coords[d];
+    wide_cells.build(view, largest);
+  }
+  const std::int64_t wide_reach = cells.reach_for(largest);
+
+  // The wide points whose radius reaches narrow target i beyond its own radius, in a fixed
+  // order (both passes below call this).
+  const auto visit_wide = [&](std::size_t i, const std::array<double, Dim>& p, auto&& found) {
+    if (wide.empty()) return;
+    const double ri2 = target_r2[i];
+    const auto wide_order = wide_cells.order();
+    wide_cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const std::uint32_t j = wide[wide_order[k]];
+        const double r2 = distance_squared<Dim>(coords, p, j);
+        if (r2 >= ri2 && r2 < radii[j] * radii[j]) found(j);
+      }
+    });
+  };
+  // A wide target's neighbours: every pair within either radius, over a block as deep as the
+  // largest radius, in a fixed order.
+  const auto visit_as_wide = [&](std::size_t i, const std::array<double, Dim>& p, auto&& found) {
+    const double ri2 = target_r2[i];
+    cells.for_each_candidate_range(p, wide_reach, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const std::uint32_t j = order[k];
+        if (j != i && distance_squared_at<Dim>(c, p, k) < std::max(ri2, radii[j] * radii[j]))
+          found(j);
+      }
+    });
+  };
+
+  // Count, then fill, as build_rows() does (its comments say why the narrow targets' loops
+  // look as they do): a double counter that vectorises, and writes without a branch.
+  out.offsets.assign(target_count + 1, 0);
+  parallel_for(target_count, [&](std::size_t i) {
+    const auto p = point_at<Dim>(coords, i);
+    double hits = 0.0;
+    const auto count = [&](std::uint32_t) { hits += 1.0; };
+    if (radii[i] > covered) {
+      visit_as_wide(i, p, count);
+    } else {
+      const double ri2 = target_r2[i];
+      hits = ri2 > 0.0 ? -1.0 : 0.0;  // the target meets itself at distance 0
+      cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+          hits += distance_squared_at<Dim>(c, p, k) < std::max(ri2, candidate_r2[k]) ? 1.0 : 0.0;
+      });
+      visit_wide(i, p, count);
+    }
+    out.offsets[i + 1] = static_cast<std::uint32_t>(hits);
+  });
+  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.index.resize(out.offsets[target_count]);
+
+  parallel_for(target_count, [&](std::size_t i) {
+    const auto p = point_at<Dim>(coords, i);
+    std::uint32_t* index = out.index.data() + out.offsets[i];
+    const std::uint32_t length = out.offsets[i + 1] - out.offsets[i];
+    std::uint32_t m = 0;
+    const auto fill = [&](std::uint32_t j) { index[m++] = j; };
+    if (radii[i] > covered) {
+      visit_as_wide(i, p, fill);
+      return;
+    }
+    const double ri2 = target_r2[i];
+    std::uint32_t discard_index = 0;
+    cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+      for (std::uint32_t k = begin; k < end; ++k) {
+        const double r2 = distance_squared_at<Dim>(c, p, k);
+        const std::uint32_t j = order[k];
+        const bool room = m < length;
+        *(room ? index + m : &discard_index) = j;
+        m += (r2 < std::max(ri2, candidate_r2[k])) & (j != i) ? 1u : 0u;
+      }
+    });
+    visit_wide(i, p, fill);
+  });
 }
 
 template <int Dim>

@@ -569,3 +569,85 @@ TEMPLATE_TEST_CASE_SIG("neighbour list does not depend on the thread count", "[n
     CHECK(lists[k].index == lists[0].index);
   }
 }
+
+namespace {
+
+// Rows of the per-point-radius rule by brute force: j is a neighbour of target i when
+// |x_i - x_j| < max(r_i, r_j); sorted by index.
+nb::NeighborList brute_force_with_radii(const Points<2>& pts, const std::vector<double>& radii,
+                                        std::size_t targets) {
+  nb::NeighborList out;
+  out.offsets.push_back(0);
+  for (std::size_t i = 0; i < targets; ++i) {
+    for (std::size_t j = 0; j < pts.size(); ++j) {
+      const double dx = pts.x[0][j] - pts.x[0][i], dy = pts.x[1][j] - pts.x[1][i];
+      if (j != i && dx * dx + dy * dy < std::max(radii[i] * radii[i], radii[j] * radii[j]))
+        out.index.push_back(static_cast<std::uint32_t>(j));
+    }
+    out.offsets.push_back(static_cast<std::uint32_t>(out.index.size()));
+  }
+  return out;
+}
+
+// Radii as a flow has them: most near `typical`, one in eight up to 3x, one in a hundred up
+// to 10x, a few zero.
+std::vector<double> spread_radii(std::size_t n, double typical, std::uint32_t seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> radii(n);
+  for (double& r : radii) {
+    const double pick = u(gen);
+    r = pick < 0.01 ? 0.0 : pick < 0.02 ? typical * (1.0 + 9.0 * u(gen))
+        : pick < 0.145 ? typical * (1.0 + 2.0 * u(gen)) : typical * (0.8 + 0.4 * u(gen));
+  }
+  return radii;
+}
+
+}  // namespace
+
+TEST_CASE("neighbours of points with their own radii equal brute force, whatever the cells",
+          "[neighbors]") {
+  const std::size_t n = GENERATE(as<std::size_t>{}, 1, 300, large_n);
+  const double typical = 0.02;
+  // Cells for the typical radius (wider radii take the builder's other ways), for half of it
+  // (every radius is "wide") and for the largest (none is).
+  const double cell_radius = GENERATE(0.02, 0.01, 0.2);
+  const int subdivisions = GENERATE(1, 2);
+  const bool all_targets = GENERATE(true, false);
+  const std::size_t targets = all_targets ? n : n / 2;
+  CAPTURE(n, cell_radius, subdivisions, targets);
+  const auto pts = random_points<2>(n, static_cast<std::uint32_t>(77 + n));
+  const auto radii = spread_radii(n, typical, static_cast<std::uint32_t>(5 + n));
+  nb::CellList<2> cells;
+  cells.build(pts.coords(), cell_radius, subdivisions);
+  nb::NeighborList fast;
+  nb::build_neighbor_list<2>(cells, pts.coords(), radii, targets, fast);
+  const auto reference = brute_force_with_radii(pts, radii, targets);
+  REQUIRE(fast.row_count() == targets);
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < targets; ++i) mismatches += sorted_row(fast, i) != sorted_row(reference, i);
+  CHECK(mismatches == 0);
+  CHECK(fast.index.size() == reference.index.size());
+  if (n == large_n) CHECK(reference.index.size() > 10 * targets);  // the test has pairs to lose
+}
+
+TEST_CASE("neighbours of points with their own radii do not depend on the thread count",
+          "[neighbors]") {
+  ThreadCountGuard guard;
+  const auto pts = random_points<2>(large_n, 4242);
+  const auto radii = spread_radii(large_n, 0.02, 17);
+  nb::CellList<2> cells;
+  cells.build(pts.coords(), 0.02, 2);
+  std::vector<nb::NeighborList> lists;
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    nb::NeighborList out;
+    nb::build_neighbor_list<2>(cells, pts.coords(), radii, large_n - 1337, out);
+    lists.push_back(std::move(out));
+  }
+  REQUIRE_FALSE(lists[0].index.empty());
+  for (std::size_t k = 1; k < lists.size(); ++k) {
+    CHECK(lists[k].offsets == lists[0].offsets);
+    CHECK(lists[k].index == lists[0].index);
+  }
+}

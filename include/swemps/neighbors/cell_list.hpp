@@ -61,6 +61,26 @@ class CellList {
     });
   }
 
+  // How many cells on each side of a point's own cell hold every point within `radius` of it:
+  // the block for_each_candidate_range(point, reach_for(radius), run) visits. At least the
+  // block of search_radius(); a hair more than radius / cell_width, so that rounding of the
+  // cell coordinates cannot put a point within radius one cell further out.
+  std::int64_t reach_for(double radius) const {
+    const double cells = radius / cell_width_ * (1.0 + 1e-8);
+    if (!(cells < 1e9)) return std::int64_t{1} << 30;  // a radius the grid cannot hold
+    return std::max(reach_, static_cast<std::int64_t>(cells) + 1);
+  }
+
+  // As above, over a block `reach` cells deep on each side instead of the cell list's own.
+  template <class Run>
+  void for_each_candidate_range(const std::array<double, Dim>& point, std::int64_t reach,
+                                Run&& run) const {
+    for_each_cell_run(point, reach, [&](std::int64_t first_cell, std::int64_t last_cell) {
+      run(cell_start_[static_cast<std::size_t>(first_cell)],
+          cell_start_[static_cast<std::size_t>(last_cell) + 1]);
+    });
+  }
+
   // Calls f(j) for every point j in the cells around `point` (a superset of the points
   // within cell_width() of it), in a fixed order.
   template <class F>
@@ -75,12 +95,17 @@ class CellList {
   // makes up the (2 reach + 1)^Dim block around `point`'s cell, clipped to the grid.
   template <class Run>
   void for_each_cell_run(const std::array<double, Dim>& point, Run&& run) const {
+    for_each_cell_run(point, reach_, run);
+  }
+  template <class Run>
+  void for_each_cell_run(const std::array<double, Dim>& point, std::int64_t reach,
+                         Run&& run) const {
     std::array<std::int64_t, Dim> c{};
     for (int d = 0; d < Dim; ++d) c[d] = cell_coordinate(point[d], d);
     std::array<std::int64_t, Dim> lo{}, hi{};
     for (int d = 0; d < Dim; ++d) {
-      lo[d] = std::max<std::int64_t>(c[d] - reach_, 0);
-      hi[d] = std::min<std::int64_t>(c[d] + reach_, cells_[d] - 1);
+      lo[d] = std::max<std::int64_t>(c[d] - reach, 0);
+      hi[d] = std::min<std::int64_t>(c[d] + reach, cells_[d] - 1);
       if (lo[d] > hi[d]) return;  // point far outside the binned box: no candidates
     }
     if constexpr (Dim == 1) {

@@ -35,7 +35,10 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
 // Rows for points that each have their own radius (radii: one per binned point, ghosts
 // included): j is a neighbour of target i when |x_i - x_j| < max(radius_i, radius_j), so the
 // rows are symmetric among targets and hold every pair either particle's kernel reaches.
-// `cells` must have been built with a cell width >= the largest radius.
+// `cells` may be sized for a typical radius: a target with a larger radius searches a deeper
+// block, and the few points with one are also found through a coarse cell list of their own,
+// so that a handful of wide kernels does not widen every particle's search. A row lists the
+// pairs of the usual block first, then those of the wide points beyond the target's radius.
 template <int Dim>
 void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
                          std::span<const double> radii, std::size_t target_count,

@@ -165,6 +165,8 @@ class Simulation {
   void add_ghosts_and_neighbors();
   // The largest search radius of the fluid particles (the scheme's, for their radii).
   double largest_search_radius() const;
+  // The radius the neighbour cells are sized for (kTypicalRadiusQuantile of search_radii_).
+  double typical_search_radius() const;
   void update_fields(bool sort);
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
   // update_fields() that turns the cell lists' refusal of a non-finite coordinate into one.
@@ -201,6 +203,7 @@ class Simulation {
   neighbors::CellList<2> cells_;
   neighbors::NeighborList neighbor_list_;
   std::vector<double> accel_x_, accel_y_, old_x_, old_y_, shift_x_, shift_y_;
+  mutable std::vector<double> typical_scratch_;  // typical_search_radius()'s working copy
   std::vector<std::uint32_t> order_;
   VolumeLedger ledger_;
   PhaseTimes phase_times_;
