@@ -103,18 +103,25 @@ std::uint32_t sum_depth_at(particles::SweParticles& p, const neighbors::Neighbor
 // One row's pair terms, gathered so that the kernel slopes and the dissipation are computed
 // in a tight loop over contiguous values.
 struct PairBuffer {
-  std::vector<double> dx, dy, r, h, inverse_omega, volume, depth, celerity, du, dv;
+  std::vector<double> dx, dy, r, h, inverse_omega, volume, depth, celerity, du, dv, area;
   void resize(std::size_t n) {
-    for (auto* v : {&dx, &dy, &r, &h, &inverse_omega, &volume, &depth, &celerity, &du, &dv})
+    for (auto* v :
+         {&dx, &dy, &r, &h, &inverse_omega, &volume, &depth, &celerity, &du, &dv, &area})
       v->resize(n);
   }
 };
 
+// With `field` (particle shifting on), the pass also sums C_i and grad C_i of
+// particle_shifting.hpp: the same pairs, distances and kernel slopes.
 template <class K>
 void surface_acceleration_with(const particles::SweParticles& p,
                                const neighbors::NeighborList& nl, double g, double alpha,
                                std::vector<double>& celerity, std::span<double> ax,
-                               std::span<double> ay) {
+                               std::span<double> ay, ConcentrationField* field) {
+  if (field != nullptr) {
+    for (auto* v : {&field->concentration, &field->gradient_x, &field->gradient_y})
+      v->resize(p.fluid_count());
+  }
   // c = sqrt(g d) once per particle (ghosts included), not once per pair.
   celerity.resize(p.size());
   parallel_for(p.size(), [&](std::size_t k) { celerity[k] = std::sqrt(g * p.depth[k]); });
@@ -137,14 +144,15 @@ void surface_acceleration_with(const particles::SweParticles& p,
         b.celerity[k] = celerity[j];
         b.du[k] = p.u[i] - p.u[j];
         b.dv[k] = p.v[i] - p.v[j];
+        b.area[k] = p.area[j];
       }
       const double hi = p.smoothing_length[i];
       const double inverse_hi = 1.0 / hi;
       const double slope_scale_i = K::sigma() * inverse_hi * inverse_hi * inverse_hi;
       const double inverse_omega_i = 1.0 / p.omega[i];
       const double ci = celerity[i], di = p.depth[i];
-      double sx = 0.0, sy = 0.0;
-#pragma omp simd reduction(+ : sx, sy)
+      double sx = 0.0, sy = 0.0, shape_sum = 0.0, cx = 0.0, cy = 0.0;
+#pragma omp simd reduction(+ : sx, sy, shape_sum, cx, cy)
       for (std::size_t k = 0; k < count; ++k) {
         const double r2 = b.dx[k] * b.dx[k] + b.dy[k] * b.dy[k];
         const double r = std::sqrt(r2);
@@ -165,9 +173,21 @@ void surface_acceleration_with(const particles::SweParticles& p,
         const double f = b.volume[k] * push * inverse_r;
         sx += f * b.dx[k];
         sy += f * b.dy[k];
+        // C_i and grad C_i (particle_shifting.hpp); a few operations more per pair, summed
+        // whether or not they are used, so that the loop has no branch.
+        shape_sum += b.area[k] * K::shape(r * inverse_hi);
+        const double c = b.area[k] * 0.5 * (slope_i + slope_j) * inverse_r;
+        cx += c * b.dx[k];
+        cy += c * b.dy[k];
       }
       ax[i] = sx;
       ay[i] = sy;
+      if (field != nullptr) {
+        field->concentration[i] =
+            K::sigma() * inverse_hi * inverse_hi * (shape_sum + p.area[i] * K::shape(0.0));
+        field->gradient_x[i] = cx;
+        field->gradient_y[i] = cy;
+      }
     }
   }
 }
@@ -229,7 +249,8 @@ void ConservativeScheme::surface_acceleration(particles::SweParticles& p,
                                               std::span<double> accel_y) {
   with_kernel_shape(kernel_.shape(), [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    surface_acceleration_with<K>(p, nl, gravity_m_s2, dissipation_, celerity_, accel_x, accel_y);
+    surface_acceleration_with<K>(p, nl, gravity_m_s2, dissipation_, celerity_, accel_x, accel_y,
+                                 shifting_ > 0.0 ? &concentration_ : nullptr);
   });
 }
 
@@ -238,7 +259,8 @@ bool ConservativeScheme::regularising_shift(const particles::SweParticles& p,
                                             std::span<double> shift_x,
                                             std::span<double> shift_y) {
   if (shifting_ == 0.0) return false;
-  particle_shift(p, nl, kernel_.shape(), shifting_, dt_s, shift_x, shift_y);
+  // The concentration field of this step's force pass: the same list and fields.
+  particle_shift(p, nl, kernel_.shape(), shifting_, dt_s, concentration_, shift_x, shift_y);
   return true;
 }
 

@@ -33,6 +33,9 @@ void concentration_gradients(const particles::SweParticles& p, const neighbors::
                              std::vector<double>& concentration, std::vector<double>& gx,
                              std::vector<double>& gy) {
   const std::size_t n = p.fluid_count();
+  concentration.resize(n);
+  gx.resize(n);
+  gy.resize(n);
 #pragma omp parallel if (n > static_cast<std::size_t>(parallel_threshold))
   {
     ShiftRow b;
@@ -67,10 +70,12 @@ void concentration_gradients(const particles::SweParticles& p, const neighbors::
 
 template <class K>
 void shift_with(const particles::SweParticles& p, const neighbors::NeighborList& nl, double beta,
-                double dt_s, std::span<double> shift_x, std::span<double> shift_y) {
+                double dt_s, const ConcentrationField& field, std::span<double> shift_x,
+                std::span<double> shift_y) {
   const std::size_t n = p.fluid_count();
-  std::vector<double> concentration(n), gx(n), gy(n);
-  concentration_gradients<K>(p, nl, concentration, gx, gy);
+  const auto& concentration = field.concentration;
+  const auto& gx = field.gradient_x;
+  const auto& gy = field.gradient_y;
 #pragma omp parallel if (n > static_cast<std::size_t>(parallel_threshold))
   {
     ShiftRow b;
@@ -123,12 +128,20 @@ void shift_with(const particles::SweParticles& p, const neighbors::NeighborList&
 
 }  // namespace
 
-void particle_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
-                    KernelShape shape, double beta, double dt_s, std::span<double> shift_x,
-                    std::span<double> shift_y) {
+void concentration_field(const particles::SweParticles& p, const neighbors::NeighborList& nl,
+                         KernelShape shape, ConcentrationField& field) {
   with_kernel_shape(shape, [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    shift_with<K>(p, nl, beta, dt_s, shift_x, shift_y);
+    concentration_gradients<K>(p, nl, field.concentration, field.gradient_x, field.gradient_y);
+  });
+}
+
+void particle_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
+                    KernelShape shape, double beta, double dt_s, const ConcentrationField& field,
+                    std::span<double> shift_x, std::span<double> shift_y) {
+  with_kernel_shape(shape, [&](const auto& kernel) {
+    using K = std::decay_t<decltype(kernel)>;
+    shift_with<K>(p, nl, beta, dt_s, field, shift_x, shift_y);
   });
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "swemps/boundaries/ghost_walls.hpp"
+#include "swemps/swe/conservative_scheme.hpp"
 #include "swemps/swe/particle_shifting.hpp"
 #include "swemps/swe/simulation.hpp"
 
@@ -47,7 +48,10 @@ Shifts shifts_of(swe::Simulation& sim, double beta, double dt) {
   sim.refresh();
   const auto& p = sim.particles();
   Shifts s{std::vector<double>(p.fluid_count()), std::vector<double>(p.fluid_count())};
-  swe::particle_shift(p, sim.neighbor_list(), swe::Settings{}.kernel, beta, dt, s.x, s.y);
+  swe::ConcentrationField field;
+  const auto shape = swe::Settings{}.kernel;
+  swe::concentration_field(p, sim.neighbor_list(), shape, field);
+  swe::particle_shift(p, sim.neighbor_list(), shape, beta, dt, field, s.x, s.y);
   return s;
 }
 
@@ -117,4 +121,27 @@ TEST_CASE("particle shifting: none at the water's edge, never more than the cap"
     if (p.x[i] < spacing || p.x[i] > 1.0 - spacing) CHECK(length == 0.0);
   }
   CHECK(capped > 0);  // the nudged particle and its neighbours are shifted
+}
+
+TEST_CASE("particle shifting: the scheme's force pass sums the same concentration field",
+          "[swe][shifting]") {
+  // The conservative scheme sums C and grad C in its force pass; its shifts must be those of
+  // the field summed on its own (up to the order of additions: 1e-12 of a shift).
+  const double spacing = 0.05;
+  auto water = columns(2.0, 0.1, 0.04, 1.0, 0.01);
+  for (std::size_t i = 0; i < water.fluid_count(); ++i) water.v[i] = 0.3 * std::sin(7.0 * i);
+  swe::Simulation sim(std::move(water), swe::Settings{}, box(2.0, true), {});
+  const auto reference = shifts_of(sim, 2.0, 0.01);
+  auto p = sim.particles();
+  swe::ConservativeScheme scheme(swe::Settings{});
+  std::vector<double> ax(p.fluid_count()), ay(p.fluid_count()), sx(ax.size()), sy(ax.size());
+  scheme.surface_acceleration(p, sim.neighbor_list(), 9.81, ax, ay);
+  REQUIRE(scheme.regularising_shift(p, sim.neighbor_list(), 0.01, sx, sy));
+  double largest = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < sx.size(); ++i) {
+    largest = std::max(largest, std::hypot(reference.x[i], reference.y[i]));
+    worst = std::max(worst, std::hypot(sx[i] - reference.x[i], sy[i] - reference.y[i]));
+  }
+  CHECK(largest > 1e-4 * spacing);  // the columns and the sideways velocities do shift
+  CHECK(worst <= 1e-12 * largest);
 }

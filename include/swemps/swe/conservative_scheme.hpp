@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "swemps/swe/particle_shifting.hpp"
 #include "swemps/swe/scheme.hpp"
 
 namespace swemps::swe {
@@ -56,7 +57,8 @@ class ConservativeScheme final : public Scheme {
   void surface_acceleration(particles::SweParticles& p, const neighbors::NeighborList& nl,
                             double gravity_m_s2, std::span<double> accel_x,
                             std::span<double> accel_y) override;
-  // Particle shifting (particle_shifting.hpp) when Settings::shifting > 0.
+  // Particle shifting (particle_shifting.hpp) when Settings::shifting > 0, from the
+  // concentration field the last surface_acceleration() summed.
   bool regularising_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
                           double dt_s, std::span<double> shift_x,
                           std::span<double> shift_y) override;
@@ -76,6 +78,8 @@ class ConservativeScheme final : public Scheme {
   std::size_t last_iterations_ = 0, last_most_iterations_ = 0;
   std::vector<std::uint32_t> iterations_;
   std::vector<double> celerity_;  // sqrt(g d) per particle and ghost, kept between steps
+  // C and grad C, summed in the force pass for the shift that follows it.
+  ConcentrationField concentration_;
 };
 
 }  // namespace swemps::swe

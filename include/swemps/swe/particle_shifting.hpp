@@ -30,6 +30,7 @@
 // which make C even up to a wall. A shift is at most kLargestShift of the particle's spacing.
 
 #include <span>
+#include <vector>
 
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/particles/swe_particles.hpp"
@@ -37,12 +38,23 @@
 
 namespace swemps::swe {
 
+// C_i and grad C_i of every fluid particle (the header's formulas).
+struct ConcentrationField {
+  std::vector<double> concentration, gradient_x, gradient_y;
+};
+
+// The field in a pass of its own. The conservative scheme sums the same terms in its force
+// pass, where the pair distances and kernel slopes are at hand anyway; this is the reference
+// it is tested against.
+void concentration_field(const particles::SweParticles& p, const neighbors::NeighborList& nl,
+                         KernelShape shape, ConcentrationField& field);
+
 // Writes each fluid particle's shift for a step of dt into shift_x, shift_y (sized to the
-// fluid particles). The particles' fields must be those of the last summation, ghosts
+// fluid particles), from `field` and the particles' fields of the last summation, ghosts
 // included.
 void particle_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
-                    KernelShape shape, double beta, double dt_s, std::span<double> shift_x,
-                    std::span<double> shift_y);
+                    KernelShape shape, double beta, double dt_s, const ConcentrationField& field,
+                    std::span<double> shift_x, std::span<double> shift_y);
 
 // The concentration below which a particle counts as at the water's edge and is not shifted.
 inline constexpr double kEdgeConcentration = 0.95;
