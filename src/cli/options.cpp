@@ -19,8 +19,9 @@ Commands:
             write both maps, the Navier-Stokes series and both surge fronts beside
             Ritter's: STEM.swe.nc, STEM.ns.nc, STEM.ns.series.csv, STEM.fronts.csv
   study     run a scene once for every combination of the numerical knobs a study file
-            lists (spacing, splitting, gradient, cfl, alpha_e), each in its own process,
-            and tabulate each run's cost and its error against Ritter's solution (CSV)
+            lists (spacing, splitting, scheme, gradient, kappa, dissipation, shifting,
+            cfl, alpha_e), each in its own process, and tabulate each run's cost and
+            its error against Ritter's solution (CSV)
 
 Options:
   -o, --output PATH   run: write the netCDF result to PATH instead of the scene's

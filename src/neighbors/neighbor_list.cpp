@@ -50,6 +50,41 @@ inline double distance_squared_at(const std::array<const double*, Dim>& c,
   return r2;
 }
 
+// The candidates of the usual block around p that `keep(k, r2)` keeps, counted; the loop
+// build_rows() explains (a double counter, so that it vectorises).
+template <int Dim, class Keep>
+double count_in_block(const CellList<Dim>& cells, const std::array<const double*, Dim>& c,
+                      const std::array<double, Dim>& p, const Keep& keep) {
+  double hits = 0.0;
+  cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+      hits += keep(k, distance_squared_at<Dim>(c, p, k)) ? 1.0 : 0.0;
+  });
+  return hits;
+}
+
+// The same candidates written into index[0, length) in block order, target i left out; the
+// number written. Every candidate is written and kept by advancing m: about a third of the
+// candidates are neighbours, a pattern no branch predictor guesses. Once the row is full, the
+// remaining writes go to a discard slot, never into the next row.
+template <int Dim, class Keep>
+std::uint32_t fill_from_block(const CellList<Dim>& cells, const std::array<const double*, Dim>& c,
+                              const std::array<double, Dim>& p, std::size_t i, const Keep& keep,
+                              std::uint32_t* index, std::uint32_t length) {
+  const auto order = cells.order();
+  std::uint32_t discard_index = 0;
+  std::uint32_t m = 0;
+  cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t k = begin; k < end; ++k) {
+      const double r2 = distance_squared_at<Dim>(c, p, k);
+      const std::uint32_t j = order[k];
+      const bool room = m < length;
+      *(room ? index + m : &discard_index) = j;
+      m += keep(k, r2) & (j != i) ? 1u : 0u;
+    }
+  });
+  return m;
+}
 
 // The two passes of both builders. `within(i, k, r2)` says whether the point at cell-ordered
 // position k, at squared distance r2 from target i, is i's neighbour; it must be a pure
@@ -60,7 +95,6 @@ void build_rows(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
   if (target_count > cells.point_count()) {
     throw std::invalid_argument("neighbour list: more targets than binned points");
   }
-  const auto order = cells.order();
   const auto c = cell_ordered_pointers(cells);
 
   // Two passes over the candidates, both reading the cell-ordered coordinates with unit
@@ -75,34 +109,18 @@ void build_rows(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
   out.offsets.assign(target_count + 1, 0);
   parallel_for(target_count, [&](std::size_t i) {
     const auto p = point_at<Dim>(coords, i);
-    double hits = within(i, std::size_t{0}, -1.0) ? -1.0 : 0.0;
-    cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::size_t k = begin; k < end; ++k)
-        hits += within(i, k, distance_squared_at<Dim>(c, p, k)) ? 1.0 : 0.0;
-    });
-    out.offsets[i + 1] = static_cast<std::uint32_t>(hits);
+    const auto keep = [&](std::size_t k, double r2) { return within(i, k, r2); };
+    const double self = within(i, std::size_t{0}, -1.0) ? 1.0 : 0.0;
+    out.offsets[i + 1] = static_cast<std::uint32_t>(count_in_block<Dim>(cells, c, p, keep) - self);
   });
   for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
   out.index.resize(out.offsets[target_count]);
 
   parallel_for(target_count, [&](std::size_t i) {
     const auto p = point_at<Dim>(coords, i);
-    std::uint32_t* index = out.index.data() + out.offsets[i];
-    const std::uint32_t length = out.offsets[i + 1] - out.offsets[i];
-    // Every candidate is written and kept by advancing m: about a third of the candidates
-    // are neighbours, a pattern no branch predictor guesses. Once the row is full, the
-    // remaining writes go to a discard slot, never into the next row.
-    std::uint32_t discard_index = 0;
-    std::uint32_t m = 0;
-    cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const double r2 = distance_squared_at<Dim>(c, p, k);
-        const std::uint32_t j = order[k];
-        const bool room = m < length;
-        *(room ? index + m : &discard_index) = j;
-        m += within(i, k, r2) & (j != i) ? 1u : 0u;
-      }
-    });
+    const auto keep = [&](std::size_t k, double r2) { return within(i, k, r2); };
+    fill_from_block<Dim>(cells, c, p, i, keep, out.index.data() + out.offsets[i],
+                         out.offsets[i + 1] - out.offsets[i]);
   });
 }
 
@@ -206,11 +224,11 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
       visit_as_wide(i, p, count);
     } else {
       const double ri2 = target_r2[i];
+      const auto keep = [&](std::size_t k, double r2) {
+        return r2 < std::max(ri2, candidate_r2[k]);
+      };
       hits = ri2 > 0.0 ? -1.0 : 0.0;  // the target meets itself at distance 0
-      cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
-        for (std::size_t k = begin; k < end; ++k)
-          hits += distance_squared_at<Dim>(c, p, k) < std::max(ri2, candidate_r2[k]) ? 1.0 : 0.0;
-      });
+      hits += count_in_block<Dim>(cells, c, p, keep);
       visit_wide(i, p, count);
     }
     out.offsets[i + 1] = static_cast<std::uint32_t>(hits);
@@ -229,16 +247,8 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
       return;
     }
     const double ri2 = target_r2[i];
-    std::uint32_t discard_index = 0;
-    cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const double r2 = distance_squared_at<Dim>(c, p, k);
-        const std::uint32_t j = order[k];
-        const bool room = m < length;
-        *(room ? index + m : &discard_index) = j;
-        m += (r2 < std::max(ri2, candidate_r2[k])) & (j != i) ? 1u : 0u;
-      }
-    });
+    const auto keep = [&](std::size_t k, double r2) { return r2 < std::max(ri2, candidate_r2[k]); };
+    m = fill_from_block<Dim>(cells, c, p, i, keep, index, length);
     visit_wide(i, p, fill);
   });
 }

@@ -152,11 +152,15 @@ void ParticleSplitting::apply(swe::StepContext& context) {
     p.volume[i] = a.volume;
     p.depth[i] = a.depth;
     p.area[i] = plan.area;
-    // Each daughter gets the radius of its own area: 0 asks the scheme to choose it.
-    p.smoothing_length[i] = 0.0;
+    // Each daughter is first searched with its parent's radius; the depth iteration then finds
+    // its own. The radius of half the parent's area would be too short a start where a
+    // daughter lands at a free edge (measured: 17 % short, a dam break's face), and a radius
+    // that outgrows its search costs every particle a second search and sum.
+    const double parent_radius = p.smoothing_length[i];
     const Daughter& b = plan.b;
     p.add_fluid(b.x, b.y, b.u, b.v, b.volume, b.depth, p.initial_area[i], p.bed[i]);
     p.area.back() = plan.area;
+    p.smoothing_length.back() = parent_radius;
   }
   splits_ += plans_.size();
 }

@@ -175,6 +175,10 @@ TEST_CASE("a single split conserves volume exactly and momentum to round-off", "
   CHECK(s.p.y[centre] + s.p.y[b] == Approx(0.0).margin(1e-15));
   CHECK(s.p.area[b] == Approx(area / 2));
   CHECK(s.p.initial_area[b] == s.p.initial_area[centre]);  // the scene's resolution is kept
+  // Both daughters are first searched with the parent's radius (the depth iteration then
+  // finds each one's own): the radius of half the area could be too short a search.
+  CHECK(s.p.smoothing_length[centre] == Scene::radius);
+  CHECK(s.p.smoothing_length[b] == Scene::radius);
   // eq 12: on the daughters' line the velocity differs by the gradient times the offset; the
   // field is u = 1 + 0.5 x + 0.2 y, exactly represented by eq 6 on a symmetric lattice.
   const double dx = s.p.x[centre] - s.p.x[b], dy = s.p.y[centre] - s.p.y[b];
