@@ -50,45 +50,71 @@ inline double distance_squared_at(const std::array<const double*, Dim>& c,
   return r2;
 }
 
-// The candidates of the usual block around p that `keep(k, r2)` keeps, counted; the loop
-// build_rows() explains (a double counter, so that it vectorises).
-template <int Dim, class Keep>
-double count_in_block(const CellList<Dim>& cells, const std::array<const double*, Dim>& c,
-                      const std::array<double, Dim>& p, const Keep& keep) {
-  double hits = 0.0;
-  cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
-    for (std::size_t k = begin; k < end; ++k)
-      hits += keep(k, distance_squared_at<Dim>(c, p, k)) ? 1.0 : 0.0;
-  });
-  return hits;
+// The number of candidates for_each_candidate_range(p, run) visits: room enough for a row.
+template <int Dim, class... Reach>
+std::size_t candidates_in_block(const CellList<Dim>& cells, const std::array<double, Dim>& p,
+                                Reach... reach) {
+  std::size_t count = 0;
+  cells.for_each_candidate_range(
+      p, reach..., [&](std::uint32_t begin, std::uint32_t end) { count += end - begin; });
+  return count;
 }
 
-// The same candidates written into index[0, length) in block order, target i left out; the
-// number written. Every candidate is written and kept by advancing m: about a third of the
-// candidates are neighbours, a pattern no branch predictor guesses. Once the row is full, the
-// remaining writes go to a discard slot, never into the next row.
+// The candidates of the usual block around p that `keep(k, r2)` keeps, written into index in
+// block order, target i left out; the number written. index has room for every candidate,
+// so each is written and kept by advancing m, without a branch: about a third of the
+// candidates are neighbours, a pattern no branch predictor guesses.
 template <int Dim, class Keep>
 std::uint32_t fill_from_block(const CellList<Dim>& cells, const std::array<const double*, Dim>& c,
                               const std::array<double, Dim>& p, std::size_t i, const Keep& keep,
-                              std::uint32_t* index, std::uint32_t length) {
+                              std::uint32_t* index) {
   const auto order = cells.order();
-  std::uint32_t discard_index = 0;
   std::uint32_t m = 0;
   cells.for_each_candidate_range(p, [&](std::uint32_t begin, std::uint32_t end) {
     for (std::uint32_t k = begin; k < end; ++k) {
       const double r2 = distance_squared_at<Dim>(c, p, k);
       const std::uint32_t j = order[k];
-      const bool room = m < length;
-      *(room ? index + m : &discard_index) = j;
+      index[m] = j;
       m += keep(k, r2) & (j != i) ? 1u : 0u;
     }
   });
   return m;
 }
 
-// The two passes of both builders. `within(i, k, r2)` says whether the point at cell-ordered
-// position k, at squared distance r2 from target i, is i's neighbour; it must be a pure
-// function of its arguments, so that the count and the fill pass agree on every candidate.
+// Rows written in one pass over the candidates. The targets are cut into the fixed chunks of
+// parallel_chunks(); a chunk appends its rows to a buffer of its own (NeighborList's
+// chunk_rows, kept between builds), making room before each row for the `most(i)`
+// candidates its loops may visit, then every buffer is copied into place. This costs a copy
+// of the index; the two passes it replaced (count the rows, then fill them) computed every
+// candidate's distance twice, and the counting pass was 40 % of the search. The rows, and
+// their order, are the same for any number of threads.
+template <class Most, class Fill>
+void write_rows(std::size_t target_count, const Most& most, const Fill& fill, NeighborList& out) {
+  out.offsets.assign(target_count + 1, 0);
+  out.chunk_rows.resize(reduction_chunks);
+  parallel_chunks(target_count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    auto& rows = out.chunk_rows[chunk];
+    std::size_t used = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t room = used + most(i);
+      if (rows.size() < room) rows.resize(std::max(room, rows.size() + rows.size() / 8));
+      const std::uint32_t length = fill(i, rows.data() + used);
+      used += length;
+      out.offsets[i + 1] = length;
+    }
+  });
+  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
+  out.index.resize(out.offsets[target_count]);
+  parallel_chunks(target_count, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    std::copy_n(out.chunk_rows[chunk].data(), out.offsets[end] - out.offsets[begin],
+                out.index.data() + out.offsets[begin]);
+  });
+}
+
+// The rows of the uniform-radius builder. `within(k, r2)` says whether the point at
+// cell-ordered position k, at squared distance r2 from the target, is its neighbour. The
+// loops read the cell-ordered coordinates with unit stride. A target is one of the binned
+// points, so it meets itself at distance 0; the fill skips it by index.
 template <int Dim, class Within>
 void build_rows(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
                 std::size_t target_count, const Within& within, NeighborList& out) {
@@ -96,32 +122,13 @@ void build_rows(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
     throw std::invalid_argument("neighbour list: more targets than binned points");
   }
   const auto c = cell_ordered_pointers(cells);
-
-  // Two passes over the candidates, both reading the cell-ordered coordinates with unit
-  // stride: the first only counts, so that the rows can be placed exactly; the second writes
-  // them. Together they cost less than one pass writing into slots sized for every candidate
-  // and packing afterwards, which also needs three times the memory. Counts are kept in a
-  // double (exact for any count that fits in memory): a floating-point accumulator lets the
-  // compiler vectorise the loop with the baseline x86-64 instruction set, an integer one does
-  // not. A target is one of the binned points, so it meets itself at distance 0; the fill
-  // pass skips it by index, and the count pass takes it off (within() holds at r2 = 0 for any
-  // radius > 0, and a point with radius 0 has no row).
-  out.offsets.assign(target_count + 1, 0);
-  parallel_for(target_count, [&](std::size_t i) {
-    const auto p = point_at<Dim>(coords, i);
-    const auto keep = [&](std::size_t k, double r2) { return within(i, k, r2); };
-    const double self = within(i, std::size_t{0}, -1.0) ? 1.0 : 0.0;
-    out.offsets[i + 1] = static_cast<std::uint32_t>(count_in_block<Dim>(cells, c, p, keep) - self);
-  });
-  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
-  out.index.resize(out.offsets[target_count]);
-
-  parallel_for(target_count, [&](std::size_t i) {
-    const auto p = point_at<Dim>(coords, i);
-    const auto keep = [&](std::size_t k, double r2) { return within(i, k, r2); };
-    fill_from_block<Dim>(cells, c, p, i, keep, out.index.data() + out.offsets[i],
-                         out.offsets[i + 1] - out.offsets[i]);
-  });
+  write_rows(
+      target_count,
+      [&](std::size_t i) { return candidates_in_block<Dim>(cells, point_at<Dim>(coords, i)); },
+      [&](std::size_t i, std::uint32_t* index) {
+        return fill_from_block<Dim>(cells, c, point_at<Dim>(coords, i), i, within, index);
+      },
+      out);
 }
 
 }  // namespace
@@ -133,12 +140,8 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
     throw std::invalid_argument("neighbour list: radius larger than the cell width");
   }
   const double radius2 = radius * radius;
-  // r2 = -1 stands for the target itself (see build_rows): a neighbour of itself when the
-  // radius is > 0.
   build_rows<Dim>(
-      cells, coords, target_count,
-      [radius2](std::size_t, std::size_t, double r2) { return (r2 < 0.0 ? 0.0 : r2) < radius2; },
-      out);
+      cells, coords, target_count, [radius2](std::size_t, double r2) { return r2 < radius2; }, out);
 }
 
 template <int Dim>
@@ -187,7 +190,7 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   const std::int64_t wide_reach = cells.reach_for(largest);
 
   // The wide points whose radius reaches narrow target i beyond its own radius, in a fixed
-  // order (both passes below call this).
+  // order.
   const auto visit_wide = [&](std::size_t i, const std::array<double, Dim>& p, auto&& found) {
     if (wide.empty()) return;
     const double ri2 = target_r2[i];
@@ -213,44 +216,29 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
     });
   };
 
-  // Count, then fill, as build_rows() does (its comments say why the narrow targets' loops
-  // look as they do): a double counter that vectorises, and writes without a branch.
-  out.offsets.assign(target_count + 1, 0);
-  parallel_for(target_count, [&](std::size_t i) {
+  // One pass, as build_rows() makes it (write_rows() says how); a row has room for the
+  // candidates of its block and, for a narrow target, of its coarse block of wide points.
+  const auto most = [&](std::size_t i) {
     const auto p = point_at<Dim>(coords, i);
-    double hits = 0.0;
-    const auto count = [&](std::uint32_t) { hits += 1.0; };
-    if (radii[i] > covered) {
-      visit_as_wide(i, p, count);
-    } else {
-      const double ri2 = target_r2[i];
-      const auto keep = [&](std::size_t k, double r2) {
-        return r2 < std::max(ri2, candidate_r2[k]);
-      };
-      hits = ri2 > 0.0 ? -1.0 : 0.0;  // the target meets itself at distance 0
-      hits += count_in_block<Dim>(cells, c, p, keep);
-      visit_wide(i, p, count);
-    }
-    out.offsets[i + 1] = static_cast<std::uint32_t>(hits);
-  });
-  for (std::size_t i = 0; i < target_count; ++i) out.offsets[i + 1] += out.offsets[i];
-  out.index.resize(out.offsets[target_count]);
-
-  parallel_for(target_count, [&](std::size_t i) {
+    if (radii[i] > covered) return candidates_in_block<Dim>(cells, p, wide_reach);
+    return candidates_in_block<Dim>(cells, p) +
+           (wide.empty() ? std::size_t{0} : candidates_in_block<Dim>(wide_cells, p));
+  };
+  const auto fill = [&](std::size_t i, std::uint32_t* index) {
     const auto p = point_at<Dim>(coords, i);
-    std::uint32_t* index = out.index.data() + out.offsets[i];
-    const std::uint32_t length = out.offsets[i + 1] - out.offsets[i];
     std::uint32_t m = 0;
-    const auto fill = [&](std::uint32_t j) { index[m++] = j; };
+    const auto found = [&](std::uint32_t j) { index[m++] = j; };
     if (radii[i] > covered) {
-      visit_as_wide(i, p, fill);
-      return;
+      visit_as_wide(i, p, found);
+      return m;
     }
     const double ri2 = target_r2[i];
     const auto keep = [&](std::size_t k, double r2) { return r2 < std::max(ri2, candidate_r2[k]); };
-    m = fill_from_block<Dim>(cells, c, p, i, keep, index, length);
-    visit_wide(i, p, fill);
-  });
+    m = fill_from_block<Dim>(cells, c, p, i, keep, index);
+    visit_wide(i, p, found);
+    return m;
+  };
+  write_rows(target_count, most, fill, out);
 }
 
 template <int Dim>

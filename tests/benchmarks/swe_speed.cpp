@@ -12,8 +12,8 @@
 // divided by the particles.
 //
 //   swemps-swe-speed [particles ...]        (default: 10000 100000 1000000)
-//   SWEMPS_BENCH_THREADS="1 2" SWEMPS_BENCH_PARTICLE_STEPS=2e7 SWEMPS_BENCH_SCHEME=seed \
-//     swemps-swe-speed
+//   SWEMPS_BENCH_THREADS="1 2" SWEMPS_BENCH_PARTICLE_STEPS=2e7 SWEMPS_BENCH_SCHEME=seed
+//     swemps-swe-speed     (the environment variables on the same command line)
 
 #include <omp.h>
 #include <unistd.h>

@@ -19,6 +19,9 @@ namespace swemps::neighbors {
 struct NeighborList {
   std::vector<std::uint32_t> offsets;  // row i is index[offsets[i] .. offsets[i+1])
   std::vector<std::uint32_t> index;
+  // The builders' working space: the rows of each chunk of targets before they are copied
+  // into index (neighbor_list.cpp, write_rows). Kept so that a build allocates nothing new.
+  std::vector<std::vector<std::uint32_t>> chunk_rows;
 
   std::size_t row_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   std::span<const std::uint32_t> row(std::size_t i) const {
