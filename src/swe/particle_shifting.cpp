@@ -25,6 +25,24 @@ struct ShiftRow {
       area[k] = p.area[j];
     }
   }
+  // The second pass's row: offsets, and the areas and grad C of fluid neighbours (ghosts,
+  // whose gradient would be a mirror image, get weight 0).
+  void gather_fluid_gradients(const particles::SweParticles& p,
+                              std::span<const std::uint32_t> row, std::size_t i,
+                              const std::vector<double>& grad_x,
+                              const std::vector<double>& grad_y) {
+    for (auto* v : {&dx, &dy, &area, &gx, &gy}) v->resize(row.size());
+    const std::size_t n = p.fluid_count();
+    for (std::size_t k = 0; k < row.size(); ++k) {
+      const std::uint32_t j = row[k];
+      dx[k] = p.x[i] - p.x[j];
+      dy[k] = p.y[i] - p.y[j];
+      const bool fluid = j < n;
+      area[k] = fluid ? p.area[j] : 0.0;
+      gx[k] = fluid ? grad_x[j] : 0.0;
+      gy[k] = fluid ? grad_y[j] : 0.0;
+    }
+  }
 };
 
 // C_i and grad C_i of every fluid particle (see the header).
@@ -83,22 +101,15 @@ void shift_with(const particles::SweParticles& p, const neighbors::NeighborList&
     for (std::size_t i = 0; i < n; ++i) {
       shift_x[i] = 0.0;
       shift_y[i] = 0.0;
-      const double speed = std::hypot(p.u[i], p.v[i]);
+      // Plain sqrt, not std::hypot: speeds and shifts are far from overflow, and hypot's guards
+      // cost more than the rest of a particle's arithmetic here.
+      const double speed = std::sqrt(p.u[i] * p.u[i] + p.v[i] * p.v[i]);
       // At rest no shift, so still water stays still; at the edge none (see the header).
       if (speed == 0.0 || concentration[i] < kEdgeConcentration) continue;
       // The kernel average of grad C over the particle and its fluid neighbours (ghosts,
       // whose gradient would be a mirror image, are left out of it: weight 0).
       const auto row = nl.row(i);
-      b.gather(p, row, i);
-      b.gx.resize(row.size());
-      b.gy.resize(row.size());
-      for (std::size_t k = 0; k < row.size(); ++k) {
-        const std::uint32_t j = row[k];
-        const bool fluid = j < n;
-        b.area[k] = fluid ? b.area[k] : 0.0;
-        b.gx[k] = fluid ? gx[j] : 0.0;
-        b.gy[k] = fluid ? gy[j] : 0.0;
-      }
+      b.gather_fluid_gradients(p, row, i, gx, gy);
       const std::size_t count = row.size();
       const double inverse_hi = 1.0 / p.smoothing_length[i];
       const double self = p.area[i] * K::shape(0.0);
@@ -115,7 +126,7 @@ void shift_with(const particles::SweParticles& p, const neighbors::NeighborList&
       const double diffusion = beta * p.smoothing_length[i] * speed * dt_s;
       double sx = -diffusion * (gx[i] - mx / weight), sy = -diffusion * (gy[i] - my / weight);
       const double largest = kLargestShift * std::sqrt(p.area[i]);
-      const double length = std::hypot(sx, sy);
+      const double length = std::sqrt(sx * sx + sy * sy);
       if (length > largest) {
         sx *= largest / length;
         sy *= largest / length;
