@@ -399,9 +399,12 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
   s.shifting = in_range(o, "shifting", 0.0, false, 10.0, false,
                         "the particle shifting coefficient beta", s.shifting);
   // Below 1 the bound would cut the areas of water that has merely thinned a little.
-  s.max_area_ratio = bounded(o, "max_area_ratio", 1.0, false, 100.0,
-                             "the largest area a kernel radius follows, in multiples of A_0",
-                             s.max_area_ratio);
+  // Absent: the scheme's own default (swe::Settings::area_ratio_cap()).
+  if (o.find("max_area_ratio") != nullptr) {
+    s.max_area_ratio = bounded(o, "max_area_ratio", 1.0, false, 100.0,
+                               "the largest area a kernel radius follows, in multiples of A_0",
+                               s.area_ratio_cap());
+  }
   const std::string_view gradient = choice(o, "gradient", {"mps", "summation"}, "mps");
   s.gradient =
       gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;

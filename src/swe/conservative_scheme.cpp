@@ -197,7 +197,7 @@ void surface_acceleration_with(const particles::SweParticles& p,
 ConservativeScheme::ConservativeScheme(const Settings& settings)
     : kernel_(settings.kernel),
       kappa_(settings.kappa),
-      max_area_ratio_(settings.max_area_ratio),
+      max_area_ratio_(settings.area_ratio_cap()),
       dissipation_(settings.dissipation),
       shifting_(settings.shifting) {
   if (!(kappa_ > 0.0) || !std::isfinite(kappa_))

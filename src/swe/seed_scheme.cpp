@@ -26,7 +26,7 @@ void SeedScheme::choose_smoothing_lengths(particles::SweParticles& p) {
   const double isolated_area = previous > 0.0 ? 1.0 / Kernel(previous).w(0.0)
                                               : std::numeric_limits<double>::infinity();
   const double radius =
-      influence_radius(p, settings_.alpha_e, settings_.max_area_ratio, isolated_area);
+      influence_radius(p, settings_.alpha_e, settings_.area_ratio_cap(), isolated_area);
   std::fill(p.smoothing_length.begin(), p.smoothing_length.begin() + static_cast<std::ptrdiff_t>(n),
             radius);
 }

@@ -399,7 +399,9 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.numerics.kernel == swemps::swe::KernelShape::cubic_spline);
   CHECK(s.numerics.dissipation == 1.0);
   CHECK(s.numerics.min_time_step_s == 1e-8);
-  CHECK(s.numerics.max_area_ratio == 4.0);
+  // Unset: each scheme's own cap, 8 under the default (conservative) scheme.
+  CHECK_FALSE(s.numerics.max_area_ratio.has_value());
+  CHECK(s.numerics.area_ratio_cap() == 8.0);
   CHECK_FALSE(s.eddy_viscosity_m2_s.has_value());  // no eddy viscosity
   CHECK(s.water[0].velocity_m_s == std::array<double, 2>{0.0, 0.0});
   CHECK(s.walls.empty());

@@ -332,7 +332,7 @@ TEST_CASE("conservative scheme: daughters of a split get their own radius", "[sw
   REQUIRE(q.fluid_count() > start);
   CHECK(std::abs(sim.relative_volume_change()) < 1e-13);
   for (std::size_t i = 0; i < q.fluid_count(); ++i) {
-    const double area = std::min(q.area[i], settings.max_area_ratio * q.initial_area[i]);
+    const double area = std::min(q.area[i], settings.area_ratio_cap() * q.initial_area[i]);
     CHECK(q.smoothing_length[i] == Approx(settings.kappa * std::sqrt(area)).epsilon(1e-8));
   }
 }

@@ -236,7 +236,7 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     swe::Simulation sim(water, settings, two_boxes(), {});
     sim.advance_to(0.5);
     REQUIRE(sim.steps() > 10);
-    const double bound = settings.alpha_e * std::sqrt(settings.max_area_ratio * a0);
+    const double bound = settings.alpha_e * std::sqrt(settings.area_ratio_cap() * a0);
     CHECK(sim.particles().smoothing_length[0] <= bound * (1 + 1e-12));
     CHECK(sim.particles().smoothing_length[0] > pool_radius);
   }
