@@ -46,16 +46,22 @@ double max_speed(const particles::SweParticles& p) {
 TEST_CASE("water at rest in a walled box stays at rest", "[swe][boundaries]") {
   const auto condition =
       GENERATE(boundaries::WallCondition::slip, boundaries::WallCondition::no_slip);
-  // The default (eq 6) gradient only: with the summation gradient a square lattice at rest is
-  // an unstable equilibrium (docs/verification.md).
-  swe::Simulation sim(block(0, 1, 0, 0.6, 0.5, 0.05), {}, closed_box(0, 1, 0, 0.6, condition), {});
-  sim.advance_to(10.0);
+  // The seed scheme with its default (eq 6) gradient, named: this balance is eq 6's. With the
+  // summation gradient, and under the conservative scheme, a square lattice at rest is not
+  // the arrangement of least energy and rearranges (round-off grows to mm/s by 20 s in this
+  // box; docs/method.md, "Time step and step order"); the conservative scheme's rest test is
+  // in test_conservative_scheme.cpp. Measured under eq 6: 9e-14 m/s after 80 s.
+  swe::Settings seed;
+  seed.scheme = swe::SchemeKind::seed;
+  swe::Simulation sim(block(0, 1, 0, 0.6, 0.5, 0.05), seed, closed_box(0, 1, 0, 0.6, condition),
+                      {});
+  sim.advance_to(30.0);
   // A full box on a lattice continued by its mirror images is a perfectly balanced state:
   // every pair force cancels. What remains is round-off in sums of ~30 terms of size
-  // g h / r_e ~ 100 m/s^2 over ~1000 steps: 1e-10 m/s is far above that and far below any
+  // g h / r_e ~ 100 m/s^2 over ~3000 steps: 1e-10 m/s is far above that and far below any
   // physical motion (a 1 mm wave in 0.5 m of water moves water at ~4 mm/s).
   CHECK(max_speed(sim.particles()) < 1e-10);
-  CHECK(sim.steps() > 500);
+  CHECK(sim.steps() > 1500);
   // The surface stays flat: every particle keeps the depth it summed to at the start.
   const auto& p = sim.particles();
   double h_min = 1e9, h_max = 0.0;
