@@ -241,6 +241,15 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
   write_rows(target_count, most, fill, out);
 }
 
+double typical_radius(std::span<const double> radii, std::vector<double>& scratch) {
+  if (radii.empty()) throw std::invalid_argument("typical radius: no radii");
+  scratch.assign(radii.begin(), radii.end());
+  const auto k =
+      static_cast<std::ptrdiff_t>(typical_radius_quantile * static_cast<double>(radii.size() - 1));
+  std::nth_element(scratch.begin(), scratch.begin() + k, scratch.end());
+  return scratch[static_cast<std::size_t>(k)];
+}
+
 template <int Dim>
 NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t target_count,
                                    double radius) {

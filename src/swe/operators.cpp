@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "swemps/neighbors/cell_list.hpp"
+#include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/neighbors/parallel.hpp"
 
 namespace swemps::swe {
@@ -241,7 +242,7 @@ namespace {
 // half the depth; with them, uniform water reads its depth up to the wall, and the field still
 // integrates to the particles' volume over the fluid side.
 //
-// The cells are sized for the kTypicalSupportQuantile quantile of the supports, not the
+// The cells are sized for the typical support (neighbors::typical_radius), not the
 // largest: the few wide particles of a thinning front would otherwise widen every cell and
 // multiply the candidates of every point (gridding was an eighth of a dam-break run's time
 // with cells sized for the largest). The wide particles are found through a second, coarse
@@ -250,19 +251,17 @@ class PointSampler {
  public:
   PointSampler(const SweParticles& p, const ParticleKernel& w) : p_(p), w_(w) {
     const std::size_t n = p.size();
-    std::vector<double> supports(n);
+    std::vector<double> supports(n), scratch;
     double largest = 0.0;
     for (std::size_t j = 0; j < n; ++j) {
       supports[j] = ParticleKernel::support(p.smoothing_length[j]);
       largest = std::max(largest, supports[j]);
     }
-    const auto k = static_cast<std::size_t>(kTypicalSupportQuantile * static_cast<double>(n - 1));
-    std::nth_element(supports.begin(), supports.begin() + static_cast<long>(k), supports.end());
     cells_.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
-                 supports[k], kCellSubdivisions);
+                 neighbors::typical_radius(supports, scratch), kCellSubdivisions);
     covered_ = cells_.search_radius();
     for (std::uint32_t j = 0; j < n; ++j) {
-      if (ParticleKernel::support(p.smoothing_length[j]) > covered_) wide_.push_back(j);
+      if (supports[j] > covered_) wide_.push_back(j);
     }
     if (wide_.empty()) return;
     wide_x_.reserve(wide_.size());
@@ -291,7 +290,6 @@ class PointSampler {
   static constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 
  private:
-  static constexpr double kTypicalSupportQuantile = 0.9;
   // Half-width cells: a 5 x 5 block fits the support's disc more tightly than 3 x 3 full
   // ones (neighbors/cell_list.hpp).
   static constexpr int kCellSubdivisions = 2;

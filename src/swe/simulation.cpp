@@ -24,9 +24,6 @@ constexpr std::size_t kSortInterval = 8;
 // Cells half as wide as the support for the neighbour search: about 40 candidates per
 // particle instead of 57 for some 20 neighbours (neighbors/cell_list.hpp).
 constexpr int kCellSubdivisions = 2;
-// The neighbour cells are sized for this quantile of the search radii: the wider few (at most
-// one in ten) search deeper blocks and are found by the others through a list of their own.
-constexpr double kTypicalRadiusQuantile = 0.9;
 
 // Adds the time since `start` to `total` when it goes out of scope.
 class ScopedTimer {
@@ -429,14 +426,12 @@ void Simulation::add_ghosts_and_neighbors() {
 }
 
 double Simulation::typical_search_radius() const {
-  // The kTypicalRadiusQuantile quantile of the fluid particles' search radii.
+  // The typical radius (neighbors::typical_radius_quantile) of the fluid particles' search
+  // radii.
   const std::size_t n = particles_.fluid_count();
   if (n == 0) return largest_search_radius();
-  typical_scratch_.assign(search_radii_.begin(), search_radii_.begin() + static_cast<long>(n));
-  const auto k = static_cast<std::size_t>(kTypicalRadiusQuantile * static_cast<double>(n - 1));
-  std::nth_element(typical_scratch_.begin(), typical_scratch_.begin() + static_cast<long>(k),
-                   typical_scratch_.end());
-  return typical_scratch_[k];
+  return neighbors::typical_radius(std::span<const double>(search_radii_.data(), n),
+                                   typical_scratch_);
 }
 
 // update_fields() without the radius, the sort and the sums: the ghosts and neighbour list of

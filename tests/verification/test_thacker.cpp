@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include "swemps/scenario/build.hpp"
@@ -18,7 +19,7 @@ TEST_CASE("Thacker's planar surface keeps its shape for three periods", "[verifi
   const auto scene =
       scenario::load(std::string(SWEMPS_SOURCE_DIR) + "/cases/thacker/scenario.json");
   const verification::ThackerProblem problem{};
-  const double period = 2.0 * M_PI / verification::thacker_omega(problem);
+  const double period = 2.0 * std::numbers::pi / verification::thacker_omega(problem);
   REQUIRE(scene.end_time_s == Approx(3.0 * period).epsilon(1e-9));
   auto sim = scenario::make_simulation(scene);
   // The maps' grid: 0.02 m cells over the 4 m x 4 m domain, half the particle spacing.

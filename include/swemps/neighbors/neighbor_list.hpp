@@ -47,6 +47,15 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
                          std::span<const double> radii, std::size_t target_count,
                          NeighborList& out);
 
+// Cells for radii that differ between points are sized for this quantile of the radii: the
+// wider few (at most one in ten) are reached through a coarse list of their own (above, and
+// the point sampler of swe/operators.cpp), so that they do not widen every point's search.
+inline constexpr double typical_radius_quantile = 0.9;
+
+// The typical_radius_quantile quantile of `radii` (not empty), by a partial sort of a copy
+// kept in `scratch`.
+double typical_radius(std::span<const double> radii, std::vector<double>& scratch);
+
 // The O(N^2) reference the fast path is tested against; rows sorted by index.
 template <int Dim>
 NeighborList brute_force_neighbors(const Coordinates<Dim>& coords, std::size_t target_count,

@@ -165,7 +165,7 @@ class Simulation {
   void add_ghosts_and_neighbors();
   // The largest search radius of the fluid particles (the scheme's, for their radii).
   double largest_search_radius() const;
-  // The radius the neighbour cells are sized for (kTypicalRadiusQuantile of search_radii_).
+  // The radius the neighbour cells are sized for (neighbors::typical_radius of search_radii_).
   double typical_search_radius() const;
   void update_fields(bool sort);
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
