@@ -134,11 +134,17 @@ struct Restart {
 };
 
 // A raster bed with cells under 3 particle spacings can be rough inside one kernel support,
-// where eq 7's smoothed depth cannot balance it: still water over such a bed was measured to
-// start moving and, at 1 spacing, to break down (docs/robustness.md, "Hard cases").
+// where a point-sampled bed cannot balance the smoothed depth: still water over such a bed was
+// measured to start moving and, under the seed scheme at 1 spacing, to break down
+// (docs/robustness.md, "Hard cases"). The balanced bed term (numerics.bed_term) sees the bed
+// through the same kernel as the depth and keeps such water at rest to round-off: no warning.
 void warn_if_bed_finer_than_particles(const scenario::Scenario& scene,
                                       const scenario::Terrain& terrain) {
   if (!terrain.bed_raster) return;
+  if (scene.numerics.scheme == swe::SchemeKind::conservative &&
+      scene.numerics.bed_term == swe::BedTerm::balanced) {
+    return;
+  }
   double spacing = 0.0;
   for (const auto& w : scene.water) spacing = std::max(spacing, w.spacing_m);
   for (const auto& in : scene.inflows) spacing = std::max(spacing, in.spacing_m);
@@ -149,7 +155,7 @@ void warn_if_bed_finer_than_particles(const scenario::Scenario& scene,
   spdlog::warn(
       "the bed raster's cells ({:.3g} m) are narrower than 3 particle spacings (3 x {:.3g} m): "
       "a bed rough from cell to cell can set still water moving; where water should rest, "
-      "resample the bed to cells of {:.3g} m or more",
+      "choose numerics.bed_term \"balanced\" or resample the bed to cells of {:.3g} m or more",
       cell, spacing, kSmoothCells * spacing);
 }
 

@@ -65,6 +65,9 @@ Lattice fill_polygon(const std::vector<std::array<double, 2>>& polygon, double s
         lattice.points.push_back({x_min + (static_cast<double>(i) + 0.5) * dx,
                                   y_min + (static_cast<double>(k) + 0.5) * dy});
     lattice.cell_area_m2 = dx * dy;
+    lattice.corner = {x_min, y_min};
+    lattice.dx_m = dx;
+    lattice.dy_m = dy;
     return lattice;
   }
   const auto nx = static_cast<long>(std::ceil((x_max - x_min) / spacing_m));
@@ -79,6 +82,9 @@ Lattice fill_polygon(const std::vector<std::array<double, 2>>& polygon, double s
     throw std::invalid_argument("fill_polygon: the polygon is thinner than the spacing");
   }
   lattice.cell_area_m2 = polygon_area(polygon) / static_cast<double>(lattice.points.size());
+  lattice.corner = {x_min, y_min};
+  lattice.dx_m = spacing_m;
+  lattice.dy_m = spacing_m;
   return lattice;
 }
 

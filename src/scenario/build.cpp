@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -18,7 +19,9 @@
 #include "swemps/particles/seeding.hpp"
 #include "swemps/scenario/memory_check.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
+#include "swemps/swe/balanced_bed_slope.hpp"
 #include "swemps/swe/bed_slope.hpp"
+#include "swemps/swe/conservative_scheme.hpp"
 #include "swemps/swe/eddy_viscosity.hpp"
 #include "swemps/swe/shock_viscosity.hpp"
 #include "swemps/swe/manning_friction.hpp"
@@ -227,6 +230,11 @@ struct Seeded {
   particles::SweParticles particles;
   std::vector<double> target_depth_m;  // the depth each particle starts with, by index
   StartingVolumes volumes;
+  // The finest body's lattice, continued over the domain as the bed the water sees
+  // (swe/bed_lattice.hpp); absent without water bodies.
+  std::optional<swe::BedLatticeGeometry> lattice;
+  // Points left dry because their water was no deeper than min_depth: (x, y, surface there).
+  std::vector<std::array<double, 3>> thin_film;
 };
 
 // Where (x, y) the body is this deep, or NaN (or no more than min_depth): dry.
@@ -261,6 +269,10 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
     const WaterBody& body = scene.water[i];
     const auto polygon = body.polygon.empty() ? corners(terrain.domain) : body.polygon;
     const auto lattice = particles::fill_polygon(polygon, body.spacing_m);
+    if (!out.lattice || lattice.dx_m * lattice.dy_m < out.lattice->dx_m * out.lattice->dy_m) {
+      out.lattice = swe::BedLatticeGeometry{lattice.corner[0], lattice.corner[1], lattice.dx_m,
+                                            lattice.dy_m, lattice.cell_area_m2};
+    }
     const bool uniform = std::holds_alternative<UniformDepth>(body.depth);
     out.volumes.from_terrain = out.volumes.from_terrain || !uniform;
     double bed_min = std::numeric_limits<double>::infinity(), bed_max = -bed_min;
@@ -272,7 +284,10 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
       const double h =
           starting_depth(body, terrain.water_depth[i].get(), bed, point[0], point[1], z_b);
       // NaN fails the test too: dry.
-      if (!uniform && !(h > body.min_depth_m)) continue;
+      if (!uniform && !(h > body.min_depth_m)) {
+        if (h > 0.0) out.thin_film.push_back({point[0], point[1], z_b + h});
+        continue;
+      }
       // Each particle carries the water of its lattice cell: the scene's volume exactly.
       p.add_fluid(point[0], point[1], body.velocity_m_s[0], body.velocity_m_s[1],
                   h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b);
@@ -404,6 +419,36 @@ Terrain read_terrain(const Scenario& scene) {
   return terrain;
 }
 
+// The lattice the balanced bed term sees the bed on: the finest water body's seeding lattice,
+// or without water bodies one of the finest inflow's spacing from the domain's corner. It
+// reaches past the domain by the widest support a particle can take (h = kappa sqrt(cap A_0)).
+std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
+                                                         const Terrain& terrain,
+                                                         const Seeded& water) {
+  const auto& seeded = water.lattice;
+  const Rectangle& d = terrain.domain;
+  swe::BedLatticeGeometry geometry;
+  if (seeded) {
+    geometry = *seeded;
+  } else {
+    double spacing = std::min(d.x_max - d.x_min, d.y_max - d.y_min) / 100.0;
+    for (const auto& inflow : scene.inflows) spacing = std::min(spacing, inflow.spacing_m);
+    geometry = {d.x_min, d.y_min, spacing, spacing, spacing * spacing};
+  }
+  double widest_cell = geometry.node_area_m2;
+  for (const auto& body : scene.water)
+    widest_cell = std::max(widest_cell, body.spacing_m * body.spacing_m);
+  for (const auto& inflow : scene.inflows)
+    widest_cell = std::max(widest_cell, inflow.spacing_m * inflow.spacing_m);
+  const double margin = 2.0 * scene.numerics.kappa *
+                        std::sqrt(scene.numerics.area_ratio_cap() * widest_cell) *
+                        (1.0 + swe::ConservativeScheme::kSearchMargin);
+  auto lattice = std::make_shared<swe::BedLattice>(
+      *terrain.bed, geometry, swe::DomainBox{d.x_min, d.x_max, d.y_min, d.y_max}, margin);
+  for (const auto& [x, y, surface] : water.thin_film) lattice->raise_node_at(x, y, surface);
+  return lattice;
+}
+
 BuiltScene build(const Scenario& scene) {
   Terrain terrain = read_terrain(scene);
   // The rasters are in memory by now; what grows with the scene from here on is the particles
@@ -421,13 +466,20 @@ BuiltScene build(const Scenario& scene) {
   // by daughters), and no effect runs.
   const auto* plane = std::get_if<PlaneBedSpec>(&scene.bed);
   const bool level = plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0;
-  if (terrain.bed && !level) {
+  Seeded seeded = seed_water(scene, terrain);
+  const bool conservative = scene.numerics.scheme == swe::SchemeKind::conservative;
+  if (terrain.bed && !level && conservative &&
+      scene.numerics.bed_term == swe::BedTerm::balanced) {
+    // The bed seen through each particle's kernel on the seeding lattice: water filled to a
+    // level stays at rest (swe/balanced_bed_slope.hpp).
+    effects.push_back(std::make_unique<swe::BalancedBedSlope>(
+        terrain.bed, make_bed_lattice(scene, terrain, seeded)));
+  } else if (terrain.bed && !level) {
     // The bed term pairs with the depth force: eq 6 on z_b beside the seed's eq 6 depth
     // gradient; the exact bed gradient beside a force that is the exact gradient of the summed
     // depth (the seed's summation variant and the conservative scheme).
-    const swe::GradientVariant bed_gradient = scene.numerics.scheme == swe::SchemeKind::seed
-                                                  ? scene.numerics.gradient
-                                                  : swe::GradientVariant::summation;
+    const swe::GradientVariant bed_gradient =
+        conservative ? swe::GradientVariant::summation : scene.numerics.gradient;
     effects.push_back(std::make_unique<swe::BedSlope>(terrain.bed, bed_gradient));
   }
   // A force: it acts with the depth gradient and the bed slope, before friction (velocity stage).
@@ -454,7 +506,6 @@ BuiltScene build(const Scenario& scene) {
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
 
-  Seeded seeded = seed_water(scene, terrain);
   swe::Simulation sim(std::move(seeded.particles), scene.numerics, std::move(walls),
                       std::move(effects));
   const bool balanced = std::any_of(scene.water.begin(), scene.water.end(), [](const auto& w) {

@@ -357,7 +357,7 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
                             std::optional<double>& shock_viscosity) {
   const Object o(v ? *v : empty_object(), "/numerics",
                  {"scheme", "cfl", "alpha_e", "max_area_ratio", "gradient", "kappa", "kernel",
-                  "dissipation", "shifting", "min_time_step", "eddy_viscosity",
+                  "dissipation", "shifting", "bed_term", "min_time_step", "eddy_viscosity",
                   "shock_viscosity"},
                  "an object");
   swe::Settings s;
@@ -375,7 +375,7 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
                             std::string(scheme) + " scheme; see \"scheme\")");
   };
   for (const auto* key : {"alpha_e", "gradient"}) only_under(key, seed, "seed");
-  for (const auto* key : {"kappa", "kernel", "dissipation", "shifting"})
+  for (const auto* key : {"kappa", "kernel", "dissipation", "shifting", "bed_term"})
     only_under(key, !seed, "conservative");
   s.cfl = bounded(o, "cfl", 0.0, true, 1.0, "the Courant number", s.cfl);
   // Below 1 the support holds too few neighbours for a stable gradient; above 3 the smoothing
@@ -398,6 +398,9 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
   // it, surely a mistake.
   s.shifting = in_range(o, "shifting", 0.0, false, 10.0, false,
                         "the particle shifting coefficient beta", s.shifting);
+  s.bed_term = choice(o, "bed_term", {"point", "balanced"}, "point") == "balanced"
+                   ? swe::BedTerm::balanced
+                   : swe::BedTerm::point;
   // Below 1 the bound would cut the areas of water that has merely thinned a little.
   // Absent: the scheme's own default (swe::Settings::area_ratio_cap()).
   if (o.find("max_area_ratio") != nullptr) {

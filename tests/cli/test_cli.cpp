@@ -191,7 +191,7 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
   REQUIRE(r.status == 0);
   // The conservative scheme keeps the terrain's volume: nothing is balanced.
   CHECK_THAT(r.output, Catch::Contains("water from terrain: geometric volume"));
-  CHECK_THAT(r.output, !Catch::Contains("balanced"));
+  CHECK_THAT(r.output, !Catch::Contains("balanced particle volume"));
   CHECK_THAT(r.output, Catch::Contains("effect 'outflow lines'"));
   CHECK_THAT(r.output, Catch::Contains("effect 'west'"));
   // 10 m cells under 10 m particles: rough from cell to cell within one kernel support.
@@ -300,6 +300,25 @@ const char* kTinyNsScene = R"({
 })";
 
 }  // namespace
+
+TEST_CASE("the balanced bed term draws no warning of a bed finer than the particles", "[cli]") {
+  const auto dir = fresh_dir("rough-bed-balanced");
+  write_bowl(dir / "bed.tif");
+  std::ofstream(dir / "scenario.json") << R"({
+    "end_time": 0.5,
+    "numerics": {"bed_term": "balanced"},
+    "bed": {"raster": "bed.tif", "crs": "EPSG:32616"},
+    "water": [{"fill": {"rectangle": {"x_min": 500150, "x_max": 500250,
+                                      "y_min": 4000100, "y_max": 4000200}},
+               "surface_elevation": 306, "spacing": 10}],
+    "output": {"path": "lake.nc"}
+  })";
+  const auto r = run(cli + " run " + (dir / "scenario.json").string() + " --threads 2");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, !Catch::Contains("narrower than 3 particle spacings"));
+  CHECK_THAT(r.output, Catch::Contains("effect 'bed slope (balanced)'"));
+}
 
 TEST_CASE("a bed raster three particle spacings fine or coarser draws no warning", "[cli]") {
   const auto dir = fresh_dir("smooth-bed");

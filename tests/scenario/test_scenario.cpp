@@ -67,7 +67,7 @@ std::vector<Broken> broken_scenes() {
        }),
        "/numerics/zzzzzz",
        "one of the keys scheme, cfl, alpha_e, max_area_ratio, gradient, kappa, kernel, dissipation, "
-       "shifting, min_time_step, eddy_viscosity"},
+       "shifting, bed_term, min_time_step, eddy_viscosity"},
       {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
        "found nothing (key missing), expected a number > 0 (seconds)"},
       {"missing domain", edited([](json& s) { s.erase("domain"); }), "/domain", "key missing"},

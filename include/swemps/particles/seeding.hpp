@@ -9,6 +9,10 @@ namespace swemps::particles {
 struct Lattice {
   std::vector<std::array<double, 2>> points;  // m
   double cell_area_m2 = 0.0;                  // the area each point stands for
+  // Point (i, k) of the lattice sits at corner + ((i + 1/2) dx, (k + 1/2) dy); the points are
+  // those of the shape (swe/bed_lattice.hpp continues the lattice over the whole domain).
+  std::array<double, 2> corner{0.0, 0.0};
+  double dx_m = 0.0, dy_m = 0.0;
 };
 
 // An axis-aligned rectangle gets a lattice fitted to it: the spacing is adjusted (by at

@@ -31,6 +31,17 @@ enum class GradientVariant {
   summation,
 };
 
+// How the conservative scheme feels the bed (build.cpp picks the effect).
+enum class BedTerm {
+  // -g grad z_b at the particle beside the summed depth's force: accurate on moving shores,
+  // but a level surface over a bed rough at the particle scale is not at rest (docs/method.md).
+  point,
+  // The surface seen through each particle's kernel on the seeding lattice, its corrected
+  // gradient in place of the pressure force (swe/balanced_bed_slope.hpp): water filled to a
+  // level stays at rest to round-off over any bed.
+  balanced,
+};
+
 struct Settings {
   double gravity_m_s2 = 9.81;
   double cfl = 0.5;      // eq 13
@@ -54,6 +65,7 @@ struct Settings {
   // (area_ratio_cap()).
   std::optional<double> max_area_ratio;
   GradientVariant gradient = GradientVariant::mps;  // seed scheme only
+  BedTerm bed_term = BedTerm::point;                // conservative scheme only
   double min_time_step_s = 1e-8;  // a step below this stops the run: the flow has broken down
 
   // The cap in force. The seed scheme keeps the 4 its tables were measured with

@@ -1,0 +1,81 @@
+#pragma once
+// The bed as the water particles see it: elevations at the nodes of a regular lattice, the
+// lattice the water was seeded on, each node standing for one lattice cell of bed
+// (docs/method.md, "Water at rest over a bed"). The balanced bed term (balanced_bed_slope.hpp)
+// weighs these nodes with a particle's own kernel, the same weights its depth sum gives the
+// particles seeded on them, so that water filled to a level feels no force.
+//
+// The lattice reaches past the domain by a margin; a node outside the domain carries the bed
+// of its mirror image across the domain's edge, as a ghost particle carries its fluid
+// particle's water, so that a lake against a wall along the domain's edge is balanced too.
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "swemps/swe/bed.hpp"
+
+namespace swemps::swe {
+
+struct BedLatticeGeometry {
+  // Node (i, k) sits at (x0 + (i + 1/2) dx, y0 + (k + 1/2) dy), for any integers i, k: the
+  // water seeding lattice (particles/seeding.hpp) with its corner at (x0, y0).
+  double x0_m = 0.0, y0_m = 0.0;
+  double dx_m = 1.0, dy_m = 1.0;
+  // The area a node stands for: the area each seeded particle's volume was reckoned with
+  // (dx dy on a rectangle; a polygon's area over its points otherwise).
+  double node_area_m2 = 1.0;
+};
+
+struct DomainBox {
+  double x_min, x_max, y_min, y_max;
+};
+
+class BedLattice {
+ public:
+  // The nodes of `geometry` that lie within `margin_m` of `domain` (margin: the widest
+  // kernel support a particle may reach).
+  BedLattice(const BedSource& bed, const BedLatticeGeometry& geometry, const DomainBox& domain,
+             double margin_m);
+
+  // Raises the node at (x, y), if there is one there, and its mirror images beyond the domain
+  // to `level_m`: a seeded point whose water was too thin to keep (min_depth) must read as dry
+  // to the water beside it, or its empty cell would hold water in the balance that no
+  // particle carries.
+  void raise_node_at(double x_m, double y_m, double level_m);
+
+  double node_area_m2() const { return geometry_.node_area_m2; }
+  const BedLatticeGeometry& geometry() const { return geometry_; }
+  std::size_t node_count() const { return z_.size(); }
+
+  // Calls visit(r2, z) for every node closer than `radius` to (x, y): its squared distance
+  // and its elevation. Nodes beyond the lattice's margin are not visited.
+  template <class Visit>
+  void for_each_node_within(double x, double y, double radius, Visit&& visit) const {
+    const double gx = (x - first_x_) / geometry_.dx_m, gy = (y - first_y_) / geometry_.dy_m;
+    const long i0 = std::max(0L, static_cast<long>(std::ceil(gx - radius / geometry_.dx_m)));
+    const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor(gx + radius / geometry_.dx_m)));
+    const long k0 = std::max(0L, static_cast<long>(std::ceil(gy - radius / geometry_.dy_m)));
+    const long k1 = std::min(ny_ - 1, static_cast<long>(std::floor(gy + radius / geometry_.dy_m)));
+    const double r2_max = radius * radius;
+    for (long k = k0; k <= k1; ++k) {
+      const double dy = first_y_ + static_cast<double>(k) * geometry_.dy_m - y;
+      const double* row = z_.data() + static_cast<std::size_t>(k * nx_);
+      for (long i = i0; i <= i1; ++i) {
+        const double dx = first_x_ + static_cast<double>(i) * geometry_.dx_m - x;
+        const double r2 = dx * dx + dy * dy;
+        if (r2 < r2_max) visit(r2, row[i]);
+      }
+    }
+  }
+
+ private:
+  BedLatticeGeometry geometry_;
+  DomainBox domain_;
+  double first_x_ = 0.0, first_y_ = 0.0;  // the node (0, 0) of the stored block
+  long nx_ = 0, ny_ = 0;
+  std::vector<double> z_;  // row-major, ny_ rows of nx_
+};
+
+}  // namespace swemps::swe
