@@ -62,6 +62,25 @@ struct LakeRun {
   std::size_t particles = 0;
 };
 
+// The basin's side walls (its ends are shores).
+swe::Simulation basin_simulation(particles::SweParticles water, const swe::Settings& settings,
+                                 std::vector<std::unique_ptr<swe::Effect>> effects) {
+  std::vector<boundaries::WallSegment> walls{{{0.0, 0.0}, {kLength, 0.0}},
+                                             {{kLength, kWidth}, {0.0, kWidth}}};
+  return swe::Simulation(std::move(water), settings, boundaries::GhostWalls(walls),
+                         std::move(effects));
+}
+
+// Runs to end_time_s, keeping the fastest particle of every step in `out`.
+void watch_speed(swe::Simulation& sim, double end_time_s, LakeRun& out) {
+  sim.advance_to(end_time_s, [&] {
+    const auto& p = sim.particles();
+    for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+      out.max_speed_m_s = std::max(out.max_speed_m_s, std::hypot(p.u[i], p.v[i]));
+    }
+  });
+}
+
 LakeRun run_lake(double end_time_s, bool balanced, double viscosity_m2_s) {
   const auto field = basin();
   const auto bed = std::make_shared<terrain::RasterBed>(field);
@@ -83,20 +102,12 @@ LakeRun run_lake(double end_time_s, bool balanced, double viscosity_m2_s) {
   std::vector<std::unique_ptr<swe::Effect>> effects;
   effects.push_back(std::make_unique<swe::BedSlope>(bed, settings.gradient));
   if (viscosity_m2_s > 0.0) effects.push_back(std::make_unique<swe::EddyViscosity>(viscosity_m2_s));
-  std::vector<boundaries::WallSegment> walls{{{0.0, 0.0}, {kLength, 0.0}},
-                                             {{kLength, kWidth}, {0.0, kWidth}}};
-  swe::Simulation sim(std::move(water), settings, boundaries::GhostWalls(walls),
-                      std::move(effects));
+  auto sim = basin_simulation(std::move(water), settings, std::move(effects));
   LakeRun out;
   if (balanced) out.max_depth_error_m = sim.balance_volumes(target, 1e-12, 400).max_depth_error_m;
   out.volume_ratio = sim.fluid_volume() / geometric;
   out.particles = sim.particles().fluid_count();
-  sim.advance_to(end_time_s, [&] {
-    const auto& p = sim.particles();
-    for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-      out.max_speed_m_s = std::max(out.max_speed_m_s, std::hypot(p.u[i], p.v[i]));
-    }
-  });
+  watch_speed(sim, end_time_s, out);
   return out;
 }
 
@@ -132,19 +143,11 @@ LakeRun run_conservative_lake(double end_time_s, swe::BedTerm bed_term) {
   } else {
     effects.push_back(std::make_unique<swe::BedSlope>(bed, swe::GradientVariant::summation));
   }
-  std::vector<boundaries::WallSegment> walls{{{0.0, 0.0}, {kLength, 0.0}},
-                                             {{kLength, kWidth}, {0.0, kWidth}}};
-  swe::Simulation sim(std::move(water), settings, boundaries::GhostWalls(walls),
-                      std::move(effects));
+  auto sim = basin_simulation(std::move(water), settings, std::move(effects));
   LakeRun out;
   out.volume_ratio = sim.fluid_volume() / geometric;
   out.particles = sim.particles().fluid_count();
-  sim.advance_to(end_time_s, [&] {
-    const auto& p = sim.particles();
-    for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-      out.max_speed_m_s = std::max(out.max_speed_m_s, std::hypot(p.u[i], p.v[i]));
-    }
-  });
+  watch_speed(sim, end_time_s, out);
   return out;
 }
 
