@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "swemps/neighbors/parallel.hpp"
+#include "swemps/swe/bed_slope.hpp"
 
 namespace swemps::swe {
 
@@ -71,8 +72,7 @@ void apply_with(const BedSource& bed, const BedLattice& lattice, StepContext& c,
                 std::vector<double>& surface) {
   auto& p = c.particles;
   const std::size_t n = p.fluid_count();
-  parallel_for(n, [&](std::size_t i) { p.bed[i] = bed.elevation(p.x[i], p.y[i]); });
-  for (std::size_t k = n; k < p.size(); ++k) p.bed[k] = p.bed[p.source[k]];
+  sample_bed_at_particles(bed, p);
 
   surface.resize(p.size());
 #pragma omp parallel if (n > static_cast <std::size_t>(parallel_threshold))

@@ -5,11 +5,16 @@
 
 namespace swemps::swe {
 
+void sample_bed_at_particles(const BedSource& bed, particles::SweParticles& p) {
+  const std::size_t n = p.fluid_count();
+  parallel_for(n, [&](std::size_t i) { p.bed[i] = bed.elevation(p.x[i], p.y[i]); });
+  for (std::size_t k = n; k < p.size(); ++k) p.bed[k] = p.bed[p.source[k]];
+}
+
 void BedSlope::apply(StepContext& context) {
   auto& p = context.particles;
   const std::size_t n = p.fluid_count();
-  parallel_for(n, [&](std::size_t i) { p.bed[i] = bed_->elevation(p.x[i], p.y[i]); });
-  for (std::size_t k = n; k < p.size(); ++k) p.bed[k] = p.bed[p.source[k]];
+  sample_bed_at_particles(*bed_, p);
 
   const double g = context.settings.gravity_m_s2;
   switch (gradient_) {

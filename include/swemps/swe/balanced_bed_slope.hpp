@@ -56,13 +56,10 @@ class BalancedBedSlope final : public Effect {
   Stage stage() const override { return Stage::forces; }
   void apply(StepContext& context) override;
 
-  // eta of the last step, fluid particles then ghosts (for tests and diagnostics).
-  std::span<const double> surface_elevation() const { return surface_; }
-
  private:
   std::shared_ptr<const BedSource> bed_;
   std::shared_ptr<const BedLattice> lattice_;
-  std::vector<double> surface_;
+  std::vector<double> surface_;  // eta, fluid particles then ghosts: kept to reuse its memory
 };
 
 }  // namespace swemps::swe

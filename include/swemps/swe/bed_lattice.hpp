@@ -9,6 +9,7 @@
 // of its mirror image across the domain's edge, as a ghost particle carries its fluid
 // particle's water, so that a lake against a wall along the domain's edge is balanced too.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -46,8 +47,6 @@ class BedLattice {
   void raise_node_at(double x_m, double y_m, double level_m);
 
   double node_area_m2() const { return geometry_.node_area_m2; }
-  const BedLatticeGeometry& geometry() const { return geometry_; }
-  std::size_t node_count() const { return z_.size(); }
 
   // Calls visit(r2, z) for every node closer than `radius` to (x, y): its squared distance
   // and its elevation. Nodes beyond the lattice's margin are not visited.

@@ -15,6 +15,10 @@
 
 namespace swemps::swe {
 
+// z_b at every fluid particle from the bed, and each ghost's from its fluid particle (as
+// method.md prescribes for z_s): the first thing every bed term does in a step.
+void sample_bed_at_particles(const BedSource& bed, particles::SweParticles& p);
+
 class BedSlope final : public Effect {
  public:
   BedSlope(std::shared_ptr<const BedSource> bed, GradientVariant gradient)
