@@ -2,8 +2,8 @@
 // tilted surface goes round the bowl three times, wetting and drying its sides.
 // verification/thacker.hpp has the exact solution; docs/verification.md the measured numbers.
 
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -15,16 +15,28 @@
 
 using namespace swemps;
 
-TEST_CASE("Thacker's planar surface keeps its shape for three periods", "[verification]") {
-  const auto scene =
-      scenario::load(std::string(SWEMPS_SOURCE_DIR) + "/cases/thacker/scenario.json");
+namespace {
+
+struct ThackerErrors {
+  double worst_l1 = 0.0, worst_centroid_m = 0.0, worst_velocity_m_s = 0.0;
+  double volume_change = 0.0;
+  std::size_t particles_at_start = 0, particles_at_end = 0;
+};
+
+// Runs the shipped scene, as loaded and then changed by `adjust`, through its three periods,
+// comparing every quarter period with the exact solution.
+template <class Adjust>
+ThackerErrors run_thacker(Adjust&& adjust) {
+  auto scene = scenario::load(std::string(SWEMPS_SOURCE_DIR) + "/cases/thacker/scenario.json");
+  adjust(scene);
   const verification::ThackerProblem problem{};
   const double period = 2.0 * std::numbers::pi / verification::thacker_omega(problem);
   REQUIRE(scene.end_time_s == Approx(3.0 * period).epsilon(1e-9));
   auto sim = scenario::make_simulation(scene);
+  ThackerErrors e;
+  e.particles_at_start = sim.particles().fluid_count();
   // The maps' grid: 0.02 m cells over the 4 m x 4 m domain, half the particle spacing.
   const swe::RegularGrid grid{0.01, 0.01, 0.02, 0.02, 200, 200};
-  double worst_l1 = 0.0, worst_centroid_m = 0.0, worst_velocity_m_s = 0.0;
   for (int quarter = 1; quarter <= 12; ++quarter) {
     const double t = quarter * period / 4.0;
     sim.advance_to(t);
@@ -56,22 +68,51 @@ TEST_CASE("Thacker's planar surface keeps its shape for three periods", "[verifi
     const double velocity = std::hypot(mu / volume - u, mv / volume - v);
     INFO("t = " << t << " s: L1 " << l1 << ", centroid off by " << centroid
                 << " m, mean velocity off by " << velocity << " m/s");
-    worst_l1 = std::max(worst_l1, l1);
-    worst_centroid_m = std::max(worst_centroid_m, centroid);
-    worst_velocity_m_s = std::max(worst_velocity_m_s, velocity);
+    e.worst_l1 = std::max(e.worst_l1, l1);
+    e.worst_centroid_m = std::max(e.worst_centroid_m, centroid);
+    e.worst_velocity_m_s = std::max(e.worst_velocity_m_s, velocity);
   }
-  WARN("Thacker, 0.04 m, three periods: worst L1 of depth " << worst_l1 << " of the volume, "
-       << "centroid off by " << worst_centroid_m << " m, mean velocity off by "
-       << worst_velocity_m_s << " m/s");
-  CHECK(std::abs(sim.relative_volume_change()) < 1e-12);
+  e.volume_change = sim.relative_volume_change();
+  e.particles_at_end = sim.particles().fluid_count();
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("Thacker's planar surface keeps its shape for three periods", "[verification]") {
+  const auto e = run_thacker([](scenario::Scenario&) {});
+  WARN("Thacker, 0.04 m, three periods: worst L1 of depth "
+       << e.worst_l1 << " of the volume, "
+       << "centroid off by " << e.worst_centroid_m << " m, mean velocity off by "
+       << e.worst_velocity_m_s << " m/s");
+  CHECK(std::abs(e.volume_change) < 1e-12);
   // Measured 1.49 % at worst (2.25 periods in), 0.66 % at the start: the kernel sum's
   // smoothing of the shoreline over a support; 0.75 % at 0.02 m, so first order. 1.8 % leaves
   // room for round-off differences between machines and fails if the surface loses its shape
   // or the oscillation damps.
-  CHECK(worst_l1 < 0.018);
+  CHECK(e.worst_l1 < 0.018);
   // The orbit's phase and amplitude: measured 5.6 mm off (the orbit's radius is 0.5 m, so
   // 0.6 degree of phase). 1 cm, a quarter of the spacing, fails on a lag of 1.1 degrees.
-  CHECK(worst_centroid_m < 0.01);
+  CHECK(e.worst_centroid_m < 0.01);
   // The uniform velocity, 0.70 m/s: measured 0.012 m/s off at worst; 0.02 m/s is 3 %.
-  CHECK(worst_velocity_m_s < 0.02);
+  CHECK(e.worst_velocity_m_s < 0.02);
+}
+
+TEST_CASE("Thacker's planar surface under the balanced bed term", "[verification]") {
+  const auto e = run_thacker(
+      [](scenario::Scenario& scene) { scene.numerics.bed_term = swe::BedTerm::balanced; });
+  WARN("Thacker, balanced bed term: worst L1 of depth "
+       << e.worst_l1 << ", centroid off by " << e.worst_centroid_m << " m, mean velocity off by "
+       << e.worst_velocity_m_s << " m/s");
+  CHECK(std::abs(e.volume_change) < 1e-12);
+  // No water leaves the bowl: a thin particle that ran up the side comes back down.
+  CHECK(e.particles_at_end == e.particles_at_start);
+  // Measured 2.3 % at worst here (2.1 % when the run steps to the shipped scene's output
+  // times: the shoreline's particles are sensitive to the step sequence). The issue's bar is
+  // 5 %; the surface read by differences with neighbours alone gave 6.9 %.
+  CHECK(e.worst_l1 < 0.05);
+  // Measured 6.8 mm; 1.5 cm is 1.7 degrees of the 0.5 m orbit (the difference form: 3.8 cm).
+  CHECK(e.worst_centroid_m < 0.015);
+  // Measured 0.013 m/s, as under the point term.
+  CHECK(e.worst_velocity_m_s < 0.02);
 }

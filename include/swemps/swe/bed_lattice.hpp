@@ -52,6 +52,14 @@ class BedLattice {
   // and its elevation. Nodes beyond the lattice's margin are not visited.
   template <class Visit>
   void for_each_node_within(double x, double y, double radius, Visit&& visit) const {
+    for_each_node_offset_within(x, y, radius,
+                                [&](double, double, double r2, double z) { visit(r2, z); });
+  }
+
+  // As for_each_node_within, with each node's offset from (x, y) first:
+  // visit(x_node - x, y_node - y, r2, z).
+  template <class Visit>
+  void for_each_node_offset_within(double x, double y, double radius, Visit&& visit) const {
     const double gx = (x - first_x_) / geometry_.dx_m, gy = (y - first_y_) / geometry_.dy_m;
     const long i0 = std::max(0L, static_cast<long>(std::ceil(gx - radius / geometry_.dx_m)));
     const long i1 = std::min(nx_ - 1, static_cast<long>(std::floor(gx + radius / geometry_.dx_m)));
@@ -64,7 +72,7 @@ class BedLattice {
       for (long i = i0; i <= i1; ++i) {
         const double dx = first_x_ + static_cast<double>(i) * geometry_.dx_m - x;
         const double r2 = dx * dx + dy * dy;
-        if (r2 < r2_max) visit(r2, row[i]);
+        if (r2 < r2_max) visit(dx, dy, r2, row[i]);
       }
     }
   }
