@@ -100,7 +100,10 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     for (std::size_t k = 0; k < count; ++k) b.tilted[k] = b.z[k] - sx * b.ox[k] - sy * b.oy[k];
     const double level = level_holding(b.tilted, b.w, depth);
     if (!std::isfinite(level)) break;
+    // Over the wet nodes: the weights and their first moments (for o_mean), the residual's sum
+    // G, and the moments of grad w that make J = sum grad w o^T - (sum grad w) o_mean^T.
     double wet = 0.0, mx = 0.0, my = 0.0, gx = 0.0, gy = 0.0;
+    double slope_x = 0.0, slope_y = 0.0, jxx = 0.0, jxy = 0.0, jyy = 0.0;
     for (std::size_t k = 0; k < count; ++k) {
       if (!(b.tilted[k] < level)) continue;
       const double d = level - b.tilted[k];
@@ -109,6 +112,11 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
       my += b.w[k] * b.oy[k];
       gx += b.wx[k] * d;
       gy += b.wy[k] * d;
+      slope_x += b.wx[k];
+      slope_y += b.wy[k];
+      jxx += b.wx[k] * b.ox[k];
+      jxy += 0.5 * (b.wx[k] * b.oy[k] + b.wy[k] * b.ox[k]);
+      jyy += b.wy[k] * b.oy[k];
     }
     if (!(wet > 0.0)) break;
     const double rx = grad_h_x - gx, ry = grad_h_y - gy, residual = std::hypot(rx, ry);
@@ -124,15 +132,11 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     previous_residual = residual;
     mx /= wet;
     my /= wet;
-    double jxx = 0.0, jxy = 0.0, jyx = 0.0, jyy = 0.0;
-    for (std::size_t k = 0; k < count; ++k) {
-      if (!(b.tilted[k] < level)) continue;
-      jxx += b.wx[k] * (b.ox[k] - mx);
-      jxy += b.wx[k] * (b.oy[k] - my);
-      jyx += b.wy[k] * (b.ox[k] - mx);
-      jyy += b.wy[k] * (b.oy[k] - my);
-    }
-    const auto [ux, uy] = solve_floored(jxx, 0.5 * (jxy + jyx), jyy, rx, ry);
+    // J symmetrised: the step is a Newton step on the symmetric part.
+    jxx -= slope_x * mx;
+    jxy -= 0.5 * (slope_x * my + slope_y * mx);
+    jyy -= slope_y * my;
+    const auto [ux, uy] = solve_floored(jxx, jxy, jyy, rx, ry);
     base_x = sx;
     base_y = sy;
     step_x = ux;

@@ -107,11 +107,11 @@ TEST_CASE("Thacker's planar surface under the balanced bed term", "[verification
   CHECK(std::abs(e.volume_change) < 1e-12);
   // No water leaves the bowl: a thin particle that ran up the side comes back down.
   CHECK(e.particles_at_end == e.particles_at_start);
-  // Measured 2.3 % at worst here (2.1 % when the run steps to the shipped scene's output
-  // times: the shoreline's particles are sensitive to the step sequence). The issue's bar is
+  // Measured 2.1-2.3 % at worst, here and when the run steps to the shipped scene's output
+  // times (the shoreline's particles are sensitive to the step sequence and to round-off). The issue's bar is
   // 5 %; the surface read by differences with neighbours alone gave 6.9 %.
   CHECK(e.worst_l1 < 0.05);
-  // Measured 6.8 mm; 1.5 cm is 1.7 degrees of the 0.5 m orbit (the difference form: 3.8 cm).
+  // Measured 6.8-7.4 mm; 1.5 cm is 1.7 degrees of the 0.5 m orbit (the difference form: 3.8 cm).
   CHECK(e.worst_centroid_m < 0.015);
   // Measured 0.013 m/s, as under the point term.
   CHECK(e.worst_velocity_m_s < 0.02);
