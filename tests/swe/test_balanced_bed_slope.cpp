@@ -2,6 +2,7 @@
 // that holds a summed depth over bed nodes, and the lattice that continues the seeding lattice
 // past the domain by mirroring.
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -84,22 +85,57 @@ TEST_CASE("a raised node and its mirror images read dry at the raised level", "[
   CHECK(elevation_at(0.75, 0.75) == 0.0);
 }
 
-TEST_CASE("a lone particle on a slope slides as a particle on a slope does", "[balanced-bed]") {
-  // One particle, no neighbours: its depth sum has no gradient, so the plane that holds it is
-  // a uniform film over the bed, whose slope is the bed's: it accelerates at g sin(theta) (for a
-  // small slope, g |grad z_b|) down the slope. A force built from differences with neighbours
-  // alone would leave it coasting (measured: such particles flew up Thacker's bowl and out of
-  // the domain).
-  constexpr double kSpacing = 0.04, kSlope = 0.05, kFilm = 2e-3;
+TEST_CASE("the lattice seen finer lies on a plane bed, and one point per cell is the lattice",
+          "[balanced-bed]") {
+  const PlaneBed bed(1.0, {0.05, -0.02}, {0.0, 0.0});  // z = 1 + 0.05 x - 0.02 y
+  const BedLattice lattice(bed, {0.0, 0.0, 0.5, 0.5, 0.25}, {0.0, 4.0, 0.0, 2.0}, 1.0);
+  const double x = 1.37, y = 0.81, radius = 0.4;
+  // Three points per cell side: spacing 1/6 m, so the disc of radius 0.4 holds about 18.
+  std::size_t count = 0;
+  lattice.for_each_fine_point_within(
+      x, y, radius, 3, [&](double ox, double oy, double r2, double z) {
+        ++count;
+        CHECK(r2 < radius * radius);
+        CHECK(r2 == Approx(ox * ox + oy * oy));
+        // On the points' own lattice: x0 + (f + 1/2) / 6 m.
+        const double fx = (x + ox) * 6.0 - 0.5, fy = (y + oy) * 6.0 - 0.5;
+        CHECK(std::abs(fx - std::round(fx)) < 1e-9);
+        CHECK(std::abs(fy - std::round(fy)) < 1e-9);
+        // Bilinear between the nodes: exact on a plane bed.
+        CHECK(z == Approx(bed.elevation(x + ox, y + oy)).epsilon(1e-12));
+      });
+  CHECK(count >= 14);
+  CHECK(count <= 22);
+  // m = 1: the nodes themselves.
+  std::vector<std::array<double, 3>> nodes, points;
+  lattice.for_each_node_offset_within(x, y, radius, [&](double ox, double oy, double, double z) {
+    nodes.push_back({ox, oy, z});
+  });
+  lattice.for_each_fine_point_within(x, y, radius, 1, [&](double ox, double oy, double, double z) {
+    points.push_back({ox, oy, z});
+  });
+  REQUIRE(points.size() == nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    CHECK(points[k][0] == Approx(nodes[k][0]).margin(1e-12));
+    CHECK(points[k][1] == Approx(nodes[k][1]).margin(1e-12));
+    CHECK(points[k][2] == Approx(nodes[k][2]).epsilon(1e-12));
+  }
+}
+
+namespace {
+
+// A 1:20 plane rising in +x under a lattice of 4 cm cells, and a film of 2 mm.
+constexpr double kCell = 0.04, kSlope = 0.05, kFilm = 2e-3;
+double slope_elevation(double x) { return kSlope * x; }
+
+// Runs `water` on the slope for `time_s` with the balanced bed term as its only effect.
+swemps::particles::SweParticles slide_on_slope(swemps::particles::SweParticles water,
+                                               double time_s) {
   const auto bed = std::make_shared<PlaneBed>(0.0, std::array<double, 2>{kSlope, 0.0},
                                               std::array<double, 2>{0.0, 0.0});
-  const double cell = kSpacing * kSpacing;
-  auto lattice =
-      std::make_shared<BedLattice>(*bed, BedLatticeGeometry{0.0, 0.0, kSpacing, kSpacing, cell},
-                                   DomainBox{0.0, 4.0, 0.0, 1.0}, 20.0 * kSpacing);
-  swemps::particles::SweParticles water;
-  const double x0 = 2.5 * kSpacing + 2.0, y0 = 12.5 * kSpacing;
-  water.add_fluid(x0, y0, 0.0, 0.0, kFilm * cell, kFilm, cell, bed->elevation(x0, y0));
+  auto lattice = std::make_shared<BedLattice>(
+      *bed, BedLatticeGeometry{0.0, 0.0, kCell, kCell, kCell * kCell},
+      DomainBox{0.0, 4.0, 0.0, 1.0}, 20.0 * kCell);
   Settings settings;
   settings.bed_term = BedTerm::balanced;
   std::vector<std::unique_ptr<Effect>> effects;
@@ -107,11 +143,65 @@ TEST_CASE("a lone particle on a slope slides as a particle on a slope does", "[b
   Simulation sim(std::move(water), settings,
                  swemps::boundaries::GhostWalls(std::vector<swemps::boundaries::WallSegment>{}),
                  std::move(effects));
+  sim.advance_to(time_s);
+  return sim.particles();
+}
+
+// The speed a particle sliding down the slope reaches in `time_s` (towards -x).
+double sliding_speed(double time_s) { return -Settings{}.gravity_m_s2 * kSlope * time_s; }
+
+}  // namespace
+
+TEST_CASE("a patch squeezed into less than a lattice cell slides as a film on a slope does",
+          "[balanced-bed]") {
+  // Water piled against a wall is squeezed far below its seeded area: here 25 particles of a
+  // 2 mm film, 5 mm apart, on a lattice of 4 cm cells. Their kernels (2h = 1.3 cm) reach no
+  // neighbouring node, so the plane is fitted to the bed seen through finer points. The middle
+  // particle's depth sum has no gradient (its neighbours stand symmetrically), so its plane is
+  // the film over the bed, and it accelerates at g |grad z_b| down the slope. Through the
+  // lattice's nodes alone its support holds one node or none, and it would not move (measured,
+  // before the finer points: 36,000 particle steps of the thin-film hard case with no node).
+  constexpr double kPatch = 0.005, kTime = 0.02;
+  swemps::particles::SweParticles water;
+  // Placed in twenty ways against the nodes and the finer points.
+  const double x0 = GENERATE(2.0, 2.007, 2.013, 2.021, 2.034);
+  const double y0 = GENERATE(0.5, 0.507, 0.511, 0.52);
+  std::size_t middle = 0;
+  for (int a = -2; a <= 2; ++a) {
+    for (int b = -2; b <= 2; ++b) {
+      if (a == 0 && b == 0) middle = water.fluid_count();
+      const double x = x0 + a * kPatch, y = y0 + b * kPatch;
+      water.add_fluid(x, y, 0.0, 0.0, kFilm * kPatch * kPatch, kFilm, kCell * kCell,
+                      slope_elevation(x));
+    }
+  }
+  const auto p = slide_on_slope(std::move(water), kTime);
+  REQUIRE(p.fluid_count() == 25);
+  REQUIRE(2.0 * p.smoothing_length[middle] < kCell);
+  const double expected = sliding_speed(kTime);
+  INFO("u = " << p.u[middle] << " m/s, v = " << p.v[middle]
+              << " m/s; a film on the slope: " << expected << " m/s");
+  // The plane is fitted to some twenty points, whose kernel sum is not exactly flat: measured
+  // over the twenty placements, u within 3.5 % of the film's and v within 3.3 % of |u|. 5 %
+  // still fails a force of half the slope or none (the nodes alone).
+  CHECK(p.u[middle] == Approx(expected).epsilon(0.05));
+  CHECK(std::abs(p.v[middle]) < 0.05 * std::abs(expected));
+}
+
+TEST_CASE("a lone particle on a slope slides as a particle on a slope does", "[balanced-bed]") {
+  // One particle, no neighbours: its depth sum has no gradient, so the plane that holds it is
+  // a uniform film over the bed, whose slope is the bed's: it accelerates at g sin(theta) (for a
+  // small slope, g |grad z_b|) down the slope. A force built from differences with neighbours
+  // alone would leave it coasting (measured: such particles flew up Thacker's bowl and out of
+  // the domain).
   constexpr double kTime = 0.5;
-  sim.advance_to(kTime);
-  const auto& p = sim.particles();
+  swemps::particles::SweParticles water;
+  const double x0 = 52.5 * kCell, y0 = 12.5 * kCell;  // on a node
+  water.add_fluid(x0, y0, 0.0, 0.0, kFilm * kCell * kCell, kFilm, kCell * kCell,
+                  slope_elevation(x0));
+  const auto p = slide_on_slope(std::move(water), kTime);
   REQUIRE(p.fluid_count() == 1);
-  const double expected = -settings.gravity_m_s2 * kSlope * kTime;  // down the slope, -x
+  const double expected = sliding_speed(kTime);
   INFO("u = " << p.u[0] << " m/s, v = " << p.v[0] << " m/s; a particle on the slope: " << expected
               << " m/s");
   // Measured: the exact speed to five digits (the film's plane is the bed's on and between the

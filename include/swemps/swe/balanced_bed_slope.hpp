@@ -28,10 +28,15 @@
 // the bed is an external force, and the price is momentum conservation on level reaches and a
 // total energy that is not bound to fall.
 //
+// Kernels narrower than a lattice cell (water squeezed against a wall) see the bed through
+// finer points between the nodes, and a plane steeper than twice the depth sum's and the bed's
+// slopes together (a bore's toe, wet on a sliver) is cut back to that.
+//
 // What it costs and where it falls short (docs/method.md, "The balanced bed term"): exact for
-// water filled to a level; Thacker's oscillation to 2.1 % of the volume (1.5 % with the point
-// bed); a sheet of water a few micrometres deep meeting a wall breaks down, because a plane
-// fits a bore's toe badly. Hence an option (Settings::bed_term), not yet the default.
+// water filled to a level; Thacker's oscillation to 2.0 % of the volume (1.5 % with the point
+// bed); a sheet spreading over a dry or micrometre-wet bed gains energy (up to 2 % of E0 in
+// 4 s), where the point bed's force, the gradient of the particles' potential energy, never
+// adds any. Hence an option (Settings::bed_term), not yet the default.
 
 #include <memory>
 #include <span>

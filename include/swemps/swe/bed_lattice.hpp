@@ -47,6 +47,8 @@ class BedLattice {
   void raise_node_at(double x_m, double y_m, double level_m);
 
   double node_area_m2() const { return geometry_.node_area_m2; }
+  // The longer side of a lattice cell.
+  double cell_size_m() const { return std::max(geometry_.dx_m, geometry_.dy_m); }
 
   // Calls visit(r2, z) for every node closer than `radius` to (x, y): its squared distance
   // and its elevation. Nodes beyond the lattice's margin are not visited.
@@ -73,6 +75,47 @@ class BedLattice {
         const double dx = first_x_ + static_cast<double>(i) * geometry_.dx_m - x;
         const double r2 = dx * dx + dy * dy;
         if (r2 < r2_max) visit(dx, dy, r2, row[i]);
+      }
+    }
+  }
+
+  // The lattice seen finer, for a kernel narrower than its cells: m x m points per cell, at the
+  // centres of the cell's m x m sub-cells, each standing for node_area_m2() / m^2 of bed, with
+  // the elevation interpolated bilinearly between the nodes (exact for a plane bed; a node's
+  // own point keeps its elevation for odd m). visit(ox, oy, r2, z) is called for every point
+  // closer than `radius` to (x, y).
+  template <class Visit>
+  void for_each_fine_point_within(double x, double y, double radius, int m, Visit&& visit) const {
+    const double dx = geometry_.dx_m, dy = geometry_.dy_m, fm = static_cast<double>(m);
+    // Point f along an axis sits at node coordinate (f + 1/2) / m - 1/2 of the stored block.
+    const auto first = [&](double g, double reach) {
+      return std::max(0L, static_cast<long>(std::ceil((g - reach + 0.5) * fm - 0.5)));
+    };
+    const auto last = [&](double g, double reach, long count) {
+      return std::min(count * m - 1, static_cast<long>(std::floor((g + reach + 0.5) * fm - 0.5)));
+    };
+    const double gx = (x - first_x_) / dx, gy = (y - first_y_) / dy;
+    const long f0 = first(gx, radius / dx), f1 = last(gx, radius / dx, nx_);
+    const long g0 = first(gy, radius / dy), g1 = last(gy, radius / dy, ny_);
+    const double r2_max = radius * radius;
+    for (long g = g0; g <= g1; ++g) {
+      const double node_y = (static_cast<double>(g) + 0.5) / fm - 0.5;
+      const double oy = (node_y - gy) * dy;
+      const long k = std::clamp(static_cast<long>(std::floor(node_y)), 0L, std::max(ny_ - 2, 0L));
+      const long k_up = std::min(k + 1, ny_ - 1);
+      const double ty = node_y - static_cast<double>(k);
+      for (long f = f0; f <= f1; ++f) {
+        const double node_x = (static_cast<double>(f) + 0.5) / fm - 0.5;
+        const double ox = (node_x - gx) * dx;
+        const double r2 = ox * ox + oy * oy;
+        if (!(r2 < r2_max)) continue;
+        const long i = std::clamp(static_cast<long>(std::floor(node_x)), 0L, std::max(nx_ - 2, 0L));
+        const long i_up = std::min(i + 1, nx_ - 1);
+        const double tx = node_x - static_cast<double>(i);
+        const auto z = [&](long a, long b) { return z_[static_cast<std::size_t>(b * nx_ + a)]; };
+        const double low = z(i, k) + tx * (z(i_up, k) - z(i, k));
+        const double high = z(i, k_up) + tx * (z(i_up, k_up) - z(i, k_up));
+        visit(ox, oy, r2, low + ty * (high - low));
       }
     }
   }
