@@ -146,7 +146,6 @@ std::array<double, 2> solve_floored(double jxx, double jxy, double jyy, double g
 std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, double grad_h_y,
                                     NodeBuffer& b) {
   const std::size_t count = b.z.size();
-  const double steepest = kSteepestFactor * (std::hypot(grad_h_x, grad_h_y) + bed_gradient(b));
   b.tilted.resize(count);
   double sx = 0.0, sy = 0.0;  // the slope being tried
   double base_x = 0.0, base_y = 0.0, step_x = 0.0, step_y = 0.0;
@@ -201,10 +200,15 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     // A small step is still taken: near rest the whole slope is that small.
     if (std::hypot(ux, uy) <= kSlopeTolerance) break;
   }
-  const double magnitude = std::hypot(sx, sy);
-  if (magnitude > steepest) {
-    sx *= steepest / magnitude;
-    sy *= steepest / magnitude;
+  // The cut (kSteepestFactor); the bed's slope is needed only for a plane steeper than the depth
+  // sum's slope alone allows, which few are.
+  const double magnitude = std::hypot(sx, sy), depth_slope = std::hypot(grad_h_x, grad_h_y);
+  if (magnitude > kSteepestFactor * depth_slope) {
+    const double steepest = kSteepestFactor * (depth_slope + bed_gradient(b));
+    if (magnitude > steepest) {
+      sx *= steepest / magnitude;
+      sy *= steepest / magnitude;
+    }
   }
   return {sx, sy};
 }
