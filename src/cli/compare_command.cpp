@@ -74,11 +74,16 @@ void compare(const Options& options, const std::string& command_line) {
   ns_scene.model = scenario::Model::ns;
   ns_scene.dimension = 3;
   ns_scene.output.path = with_suffix(stem, ".ns.nc");
-  // Splitting refines the shallow-water particles where the water thins; it is numerics, not
-  // physics, so the comparison keeps it for the shallow-water run and needs no counterpart.
+  // Splitting and merging set the shallow-water particles' resolution where the water thins or
+  // gathers; they are numerics, not physics, so the comparison keeps them for the shallow-water
+  // run and needs no counterpart.
   if (ns_scene.splitting) {
     ns_scene.splitting.reset();
     spdlog::info("compare: particle splitting applies to the shallow-water run only");
+  }
+  if (ns_scene.merging) {
+    ns_scene.merging.reset();
+    spdlog::info("compare: particle merging applies to the shallow-water run only");
   }
   // Before anything runs, so that a scene model ns cannot take fails at once.
   scenario::check_ns_scene(ns_scene);

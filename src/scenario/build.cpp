@@ -18,13 +18,14 @@
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/particles/seeding.hpp"
 #include "swemps/scenario/memory_check.hpp"
+#include "swemps/splitting/particle_merging.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/balanced_bed_slope.hpp"
 #include "swemps/swe/bed_slope.hpp"
 #include "swemps/swe/conservative_scheme.hpp"
 #include "swemps/swe/eddy_viscosity.hpp"
-#include "swemps/swe/shock_viscosity.hpp"
 #include "swemps/swe/manning_friction.hpp"
+#include "swemps/swe/shock_viscosity.hpp"
 
 namespace swemps::scenario {
 
@@ -505,6 +506,13 @@ BuiltScene build(const Scenario& scene) {
   const auto& d = terrain.domain;
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
+  // Merging removes particles too, so it comes after every effect that reads the positions
+  // before the move; it merges the particles let in this step only once they are summed.
+  if (scene.merging) {
+    effects.push_back(std::make_unique<splitting::ParticleMerging>(
+        *scene.merging,
+        std::vector<boundaries::WallSegment>(walls.segments().begin(), walls.segments().end())));
+  }
 
   swe::Simulation sim(std::move(seeded.particles), scene.numerics, std::move(walls),
                       std::move(effects));

@@ -602,6 +602,23 @@ std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   return s;
 }
 
+std::optional<splitting::MergingSettings> read_merging(
+    const json* v, const std::optional<splitting::SplittingSettings>& split) {
+  if (v == nullptr) return std::nullopt;
+  const Object o(*v, "/merging", {"threshold"}, "an object (empty for the defaults)");
+  splitting::MergingSettings s;
+  // Two particles just under the threshold merge into one of twice its area: with splitting,
+  // that must stay below the splitting threshold, or a merged particle is split at once.
+  const bool splits = split.has_value();
+  s.area_ratio_threshold = in_range(
+      o, "threshold", 0.0, true, splits ? 0.5 * split->area_ratio_threshold : 1.0, splits,
+      splits ? "the area ratio A/A_0 below which particles merge, below half the splitting "
+               "threshold, or merged particles would split again at once"
+             : "the area ratio A/A_0 below which particles merge",
+      s.area_ratio_threshold);
+  return s;
+}
+
 // without one, the rasters that name a CRS must name the same, for the scene has one CRS.
 void check_crs_keys(const Scenario& s) {
   std::vector<std::pair<std::string, std::string>> given;  // (JSON path, CRS)
@@ -657,11 +674,11 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
 Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {
   const json root = parse_json(text);
-  const Object o(
-      root, "",
-      {"name", "description", "gravity", "end_time", "numerics", "model", "dimension", "ns",
-       "domain", "water", "walls", "bed", "friction", "splitting", "inflow", "outflow", "output"},
-      "a JSON object describing the scene");
+  const Object o(root, "",
+                 {"name", "description", "gravity", "end_time", "numerics", "model", "dimension",
+                  "ns", "domain", "water", "walls", "bed", "friction", "splitting", "merging",
+                  "inflow", "outflow", "output"},
+                 "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
   if (s.name.empty()) {
@@ -699,6 +716,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   s.walls = read_walls(o.find("walls"));
   s.manning_n = read_friction(o.find("friction"), base_dir);
   s.splitting = read_splitting(o.find("splitting"));
+  s.merging = read_merging(o.find("merging"), s.splitting);
   s.inflows = read_inflows(o.find("inflow"), s.water, base_dir);
   if (s.water.empty() && s.inflows.empty()) {
     const json* water = o.find("water");

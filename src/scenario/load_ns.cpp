@@ -289,6 +289,10 @@ void check_ns_scene(const Scenario& s) {
     throw ScenarioError("/splitting", "particle splitting",
                         "no \"splitting\" (" + unsupported("splitting") + ")");
   }
+  if (s.merging) {
+    throw ScenarioError("/merging", "particle merging",
+                        "no \"merging\" (" + unsupported("merging") + ")");
+  }
   if (!s.inflows.empty()) {
     throw ScenarioError("/inflow", std::to_string(s.inflows.size()) + " inflow lines",
                         "no \"inflow\" (" + unsupported("inflow") + ")");

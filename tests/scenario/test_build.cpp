@@ -457,3 +457,43 @@ TEST_CASE("the valley-flood case builds on the shipped DEM and accounts for its 
   CHECK(sim.ledger().added_m3 <= hydrograph_m3 * (1 + 1e-12));
   CHECK(sim.ledger().added_m3 > hydrograph_m3 - row_m3);
 }
+
+TEST_CASE(
+    "where an inflow gathers in a bowl, merging keeps the particles near their reference "
+    "area and the volume to round-off",
+    "[scenario][build][merging]") {
+  TempDir dir;
+  write_raster(dir.path(), "bed.tif", bowl);
+  json j = lake_scene();
+  j.erase("water");
+  // 0.2 m deep rows of 5 m spacing (A_0 = 25 m^2) run down the bowl's western side and pond
+  // at its bottom, 1,200 m^3 some 1.2 m deep: there a particle covers a sixth of its A_0.
+  j["inflow"] = {{{"line", {{500045, 4000090}, {500045, 4000110}}},
+                  {"hydrograph", {{0, 20}, {60, 20}, {60.001, 0}}},
+                  {"depth", 0.2},
+                  {"spacing", 5}}};
+  j["friction"] = {{"manning_n", 0.03}};
+  struct Outcome {
+    std::size_t particles = 0, small = 0;
+    double volume_change = 0.0;
+  };
+  const auto run = [&](bool merging) {
+    if (merging) j["merging"] = json::object();
+    auto built = swemps::scenario::build(scene_in(dir, j));
+    auto& sim = built.simulation;
+    sim.advance_to(120.0);
+    const auto& p = sim.particles();
+    Outcome o{p.fluid_count(), 0, sim.relative_volume_change()};
+    for (std::size_t i = 0; i < p.fluid_count(); ++i)
+      o.small += p.area[i] < 0.5 * p.initial_area[i];
+    return o;
+  };
+  const Outcome without = run(false), with = run(true);
+  INFO("without merging: " << without.particles << " particles, " << without.small
+                           << " below 0.5 A_0; with: " << with.particles << ", " << with.small);
+  CHECK(without.small > without.particles / 3);  // the pond is there to merge
+  CHECK(with.particles < without.particles / 2);
+  CHECK(with.small < with.particles / 10);
+  CHECK(std::abs(without.volume_change) < 1e-12);
+  CHECK(std::abs(with.volume_change) < 1e-12);
+}

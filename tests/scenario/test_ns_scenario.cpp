@@ -180,6 +180,8 @@ std::vector<Broken> broken_ns_scenes() {
        "supported with model ns"},
       {"splitting", ns_edited([](json& s) { s["splitting"] = json::object(); }), "/splitting",
        "splitting is not supported with model ns"},
+      {"merging", ns_edited([](json& s) { s["merging"] = json::object(); }), "/merging",
+       "merging is not supported with model ns"},
       {"inflow", ns_edited([](json& s) {
          s["inflow"] = json::parse(R"([{"line": [[0.2, 0], [0.2, 0.1]], "hydrograph": [[0, 1]]}])");
        }),

@@ -239,6 +239,14 @@ std::vector<Broken> broken_effect_scenes() {
        "one of the keys threshold, alpha_s, max_particles, axis (did you mean \"threshold\"?)"},
       {"unknown split axis", with_key("splitting", R"({"axis": "minr"})"), "/splitting/axis",
        "expected one of \"minor\", \"major\" (did you mean \"minor\"?)"},
+      {"merging not an object", with_key("merging", "0.5"), "/merging",
+       "found 0.5, expected an object (empty for the defaults)"},
+      {"merging threshold of 0", with_key("merging", R"({"threshold": 0})"), "/merging/threshold",
+       "found 0, expected a number in (0, 1] (the area ratio A/A_0 below which particles merge)"},
+      {"merging threshold above 1", with_key("merging", R"({"threshold": 1.2})"),
+       "/merging/threshold", "found 1.2, expected a number in (0, 1]"},
+      {"misspelt merging key", with_key("merging", R"({"threshhold": 0.4})"), "/merging/threshhold",
+       "did you mean \"threshold\"?"},
   };
 }
 
@@ -250,6 +258,29 @@ TEST_CASE("broken scenes name the offending JSON path and say what was expected"
 
 TEST_CASE("broken bed, friction and splitting sections point at the exact key", "[scenario]") {
   check_broken(broken_effect_scenes(), true);
+}
+
+TEST_CASE("merging must stay below half the splitting threshold", "[scenario][merging]") {
+  // Two particles merged just under the merging threshold have twice its area: at half the
+  // splitting threshold or more they would be split again at once.
+  json scene = json::parse(with_key("splitting", R"({"threshold": 1.2})"));
+  scene["merging"] = json::parse(R"({"threshold": 0.6})");
+  CHECK_THROWS_WITH(parse_text(scene.dump()),
+                    Contains("/merging/threshold") &&
+                        Contains("found 0.6, expected a number in (0, 0.6) (the area ratio "
+                                 "A/A_0 below which particles merge, below half the splitting "
+                                 "threshold"));
+  scene["merging"] = json::parse(R"({"threshold": 0.59})");
+  const auto s = parse_text(scene.dump());
+  REQUIRE(s.merging.has_value());
+  CHECK(s.merging->area_ratio_threshold == 0.59);
+  // The default, with splitting's default.
+  scene["splitting"] = json::object();
+  scene["merging"] = json::object();
+  CHECK(parse_text(scene.dump()).merging->area_ratio_threshold == 0.5);
+  // Without the key, no merging.
+  scene.erase("merging");
+  CHECK_FALSE(parse_text(scene.dump()).merging.has_value());
 }
 
 TEST_CASE("a polygon of many vertices is checked edge against edge", "[scenario]") {

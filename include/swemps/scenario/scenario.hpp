@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "swemps/ns/settings.hpp"
+#include "swemps/splitting/particle_merging.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/settings.hpp"
 
@@ -166,6 +167,7 @@ struct Scenario {
   BedSpec bed;
   std::optional<ManningSpec> manning_n;                   // absent: no friction
   std::optional<splitting::SplittingSettings> splitting;  // absent: no splitting
+  std::optional<splitting::MergingSettings> merging;      // absent: no merging
   std::vector<Inflow> inflows;
   std::vector<Outflow> outflows;
   Output output;
