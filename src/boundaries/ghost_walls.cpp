@@ -1,5 +1,6 @@
 #include "swemps/boundaries/ghost_walls.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -138,6 +139,11 @@ bool GhostWalls::crosses(const WallSegment& wall, Vec p0, Vec p1) {
   // Proper or touching intersection of segment p0-p1 with the wall; ending exactly on the
   // wall counts as crossing, so no particle is ever left on a wall line.
   return crossing_fraction(wall, p0, p1, 0.0) >= 0.0;
+}
+
+bool GhostWalls::crosses_any(std::span<const WallSegment> walls, Vec p0, Vec p1) {
+  return std::any_of(walls.begin(), walls.end(),
+                     [&](const WallSegment& wall) { return crosses(wall, p0, p1); });
 }
 
 std::size_t GhostWalls::keep_inside(particles::SweParticles& p, std::span<const double> old_x,

@@ -11,12 +11,6 @@ ParticleMerging::ParticleMerging(MergingSettings settings,
                                  std::vector<boundaries::WallSegment> walls)
     : settings_(settings), walls_(std::move(walls)) {}
 
-bool ParticleMerging::crosses_wall(double x0, double y0, double x1, double y1) const {
-  return std::any_of(walls_.begin(), walls_.end(), [&](const boundaries::WallSegment& wall) {
-    return boundaries::GhostWalls::crosses(wall, {x0, y0}, {x1, y1});
-  });
-}
-
 bool ParticleMerging::merge_allowed(const particles::SweParticles& p, std::size_t i,
                                     std::size_t j) const {
   return p.area[i] + p.area[j] <
@@ -35,7 +29,9 @@ std::size_t ParticleMerging::nearest_partner(const particles::SweParticles& p,
     if (r2 > reach * reach) return;
     // Ties go to the lower index, so that the pairs never depend on the cells' order.
     if (r2 > best_r2 || (r2 == best_r2 && j > best)) return;
-    if (!merge_allowed(p, i, j) || crosses_wall(p.x[i], p.y[i], p.x[j], p.y[j])) return;
+    if (!merge_allowed(p, i, j) ||
+        boundaries::GhostWalls::crosses_any(walls_, {p.x[i], p.y[i]}, {p.x[j], p.y[j]}))
+      return;
     best = j;
     best_r2 = r2;
   });

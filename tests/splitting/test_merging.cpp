@@ -60,57 +60,45 @@ TEST_CASE("two small particles merge into one at their centre of volume", "[merg
   CHECK(s.ledger.removed_m3 == 0.0);  // nothing left the domain
 }
 
+namespace {
+
+// How many of two particles on the x axis, each given as (x, A / A_0), are left after one
+// merge pass.
+std::size_t left_of_pair(std::array<double, 2> a, std::array<double, 2> b) {
+  Scene s;
+  s.add(a[0], 0.0, a[1]);
+  s.add(b[0], 0.0, b[1]);
+  splitting::ParticleMerging effect({0.5}, {});
+  s.merge(effect);
+  return s.p.fluid_count();
+}
+
+}  // namespace
+
 TEST_CASE("merging needs a small particle, a partner within reach, and no wall between",
           "[merging]") {
   splitting::ParticleMerging effect({0.5}, {});
-  SECTION("a small particle beside one of its reference area stays") {
-    Scene s;
-    s.add(0.0, 0.0, 0.3);
-    s.add(0.05, 0.0, 1.0);
-    s.merge(effect);
-    CHECK(s.p.fluid_count() == 2);
-  }
-  SECTION("the threshold is strict") {
-    Scene s;
-    s.add(0.0, 0.0, 0.5);
-    s.add(0.05, 0.0, 0.5);
-    s.merge(effect);
-    CHECK(s.p.fluid_count() == 2);
-  }
-  SECTION("two small particles beyond both radii stay") {
-    Scene s;
-    s.add(0.0, 0.0, 0.2);   // radius 0.058 m
-    s.add(0.09, 0.0, 0.4);  // radius 0.082 m
-    s.merge(effect);
-    CHECK(s.p.fluid_count() == 2);
-  }
-  SECTION("a tiny particle merges with one of nearly full size, within the larger's radius") {
-    Scene s;
-    s.add(0.0, 0.0, 0.1);   // radius 0.041 m
-    s.add(0.08, 0.0, 0.8);  // radius 0.116 m; together 0.9 A_0 of 2 A_0
-    s.merge(effect);
-    CHECK(s.p.fluid_count() == 1);
-    CHECK(s.p.area[0] == Approx(0.009));
-  }
-  SECTION("but not where the pair would exceed the threshold times both reference areas") {
-    Scene s;
-    s.add(0.0, 0.0, 0.1);
-    s.add(0.08, 0.0, 0.9);  // together 1.0 A_0: not below 0.5 x 2 A_0
-    s.merge(effect);
-    CHECK(s.p.fluid_count() == 2);
-  }
-  SECTION("a wall between two small particles keeps them apart") {
-    Scene s;
-    s.add(-0.02, 0.0, 0.3);
-    s.add(0.02, 0.0, 0.3);
-    const boundaries::WallSegment wall{{0.0, -1.0}, {0.0, 1.0}, boundaries::WallCondition::slip};
-    splitting::ParticleMerging walled({0.5}, {wall});
-    s.merge(walled);
-    CHECK(s.p.fluid_count() == 2);
-    // Without the wall they merge.
-    s.merge(effect);
-    CHECK(s.p.fluid_count() == 1);
-  }
+  // A small particle beside one of its reference area stays.
+  CHECK(left_of_pair({0.0, 0.3}, {0.05, 1.0}) == 2);
+  // The threshold is strict.
+  CHECK(left_of_pair({0.0, 0.5}, {0.05, 0.5}) == 2);
+  // Two small particles beyond both radii (0.058 and 0.082 m) stay.
+  CHECK(left_of_pair({0.0, 0.2}, {0.09, 0.4}) == 2);
+  // A tiny particle (radius 0.041 m) merges with one of nearly full size within the larger's
+  // radius (0.116 m): together 0.9 A_0 of their 2 A_0.
+  CHECK(left_of_pair({0.0, 0.1}, {0.08, 0.8}) == 1);
+  // But not where the pair would reach the threshold times both reference areas (1.0 A_0).
+  CHECK(left_of_pair({0.0, 0.1}, {0.08, 0.9}) == 2);
+  // A wall between two small particles keeps them apart; without it they merge.
+  Scene s;
+  s.add(-0.02, 0.0, 0.3);
+  s.add(0.02, 0.0, 0.3);
+  const boundaries::WallSegment wall{{0.0, -1.0}, {0.0, 1.0}, boundaries::WallCondition::slip};
+  splitting::ParticleMerging walled({0.5}, {wall});
+  s.merge(walled);
+  CHECK(s.p.fluid_count() == 2);
+  s.merge(effect);
+  CHECK(s.p.fluid_count() == 1);
 }
 
 TEST_CASE("a merged particle's reference area is the mean of the pair's", "[merging]") {

@@ -49,6 +49,10 @@ class GhostWalls {
 
   // Signed distance helpers, exposed for tests: true if segment p0-p1 crosses the wall.
   static bool crosses(const WallSegment& wall, std::array<double, 2> p0, std::array<double, 2> p1);
+  // True if segment p0-p1 crosses any of the walls: a particle placed at p1 from p0 (a split
+  // daughter, a merged pair) would be on another side of one.
+  static bool crosses_any(std::span<const WallSegment> walls, std::array<double, 2> p0,
+                          std::array<double, 2> p1);
 
  private:
   struct Line {  // a segment in the frame the reflections need

@@ -57,7 +57,6 @@ class ParticleMerging final : public swe::Effect {
   std::size_t merges() const { return merges_; }
 
  private:
-  bool crosses_wall(double x0, double y0, double x1, double y1) const;
   bool merge_allowed(const particles::SweParticles& p, std::size_t i, std::size_t j) const;
   // The untaken particle nearest to candidate i that it may merge with, within the reach of
   // either kernel and on its side of every wall; i itself if there is none.
