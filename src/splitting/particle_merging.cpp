@@ -55,6 +55,7 @@ void ParticleMerging::apply(swe::StepContext& context) {
   cells_.build({std::span<const double>(p.x.data(), n), std::span<const double>(p.y.data(), n)},
                widest);
   taken_.assign(n, 0);
+  merged_away_.assign(n, 0);
   std::size_t merged_now = 0;
   // Greedy, in index order: the pairs are the same on any number of threads.
   for (const std::uint32_t i : candidates_) {
@@ -79,12 +80,10 @@ void ParticleMerging::apply(swe::StepContext& context) {
     p.depth[a] = volume / p.area[a];
     p.smoothing_length[a] = std::hypot(p.smoothing_length[a], p.smoothing_length[b]);
     p.volume[a] = volume;
-    p.smoothing_length[b] = -1.0;  // marks b for removal
+    merged_away_[b] = 1;
     ++merged_now;
   }
   if (merged_now == 0) return;
-  merged_away_.assign(n, 0);
-  for (std::size_t i = 0; i < n; ++i) merged_away_[i] = p.smoothing_length[i] < 0.0;
   p.remove(merged_away_);
   merges_ += merged_now;
 }
