@@ -33,7 +33,7 @@
 // slopes together (a bore's toe, wet on a sliver) is cut back to that.
 //
 // What it costs and where it falls short (docs/method.md, "The balanced bed term"): exact for
-// water filled to a level; Thacker's oscillation to 2.0 % of the volume (1.5 % with the point
+// water filled to a level; Thacker's oscillation to 2.1 % of the volume (1.5 % with the point
 // bed); a sheet spreading over a dry or micrometre-wet bed gains energy (up to 2 % of E0 in
 // 4 s), where the point bed's force, the gradient of the particles' potential energy, never
 // adds any. Hence an option (Settings::bed_term), not yet the default.
