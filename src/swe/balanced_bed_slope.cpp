@@ -222,8 +222,10 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
       plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian, all_wet);
   const bool solved = interior == WetSetFit::exact;
   double sx = solved ? all_wet[0] : 0.0, sy = solved ? all_wet[1] : 0.0;  // the slope being tried
-  b.wet.assign(count, 0);
-  b.previous_wet.assign(count, 2);  // no set yet
+  if (!solved) {
+    b.wet.assign(count, 0);
+    b.previous_wet.assign(count, 2);  // no set yet
+  }
   double base_x = 0.0, base_y = 0.0, step_x = 0.0, step_y = 0.0;
   double previous_residual = std::numeric_limits<double>::infinity();
   for (int steps = 0; !solved && steps < kMaxPlaneSteps; ++steps) {
