@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace swemps::particles {
@@ -86,6 +87,57 @@ Lattice fill_polygon(const std::vector<std::array<double, 2>>& polygon, double s
   lattice.dx_m = spacing_m;
   lattice.dy_m = spacing_m;
   return lattice;
+}
+
+std::vector<char> connected_to(const Lattice& lattice, const std::vector<char>& wet,
+                               std::array<double, 2> from) {
+  const std::size_t n = lattice.points.size();
+  if (wet.size() != n) throw std::invalid_argument("connected_to: one flag per lattice point");
+  std::vector<char> reached(n, 0);
+  if (n == 0) return reached;
+  // Lattice indices (i, k) of every point; the points of a shape are a subset of the block.
+  const auto index = [&](double v, double corner, double step) {
+    return static_cast<long>(std::lround((v - corner) / step - 0.5));
+  };
+  long i_max = 0, k_max = 0;
+  std::vector<std::array<long, 2>> ik(n);
+  for (std::size_t m = 0; m < n; ++m) {
+    ik[m] = {index(lattice.points[m][0], lattice.corner[0], lattice.dx_m),
+             index(lattice.points[m][1], lattice.corner[1], lattice.dy_m)};
+    i_max = std::max(i_max, ik[m][0]);
+    k_max = std::max(k_max, ik[m][1]);
+  }
+  const std::size_t nx = static_cast<std::size_t>(i_max + 1), ny = static_cast<std::size_t>(k_max + 1);
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> at(nx * ny, kNone);
+  std::size_t start = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t m = 0; m < n; ++m) {
+    at[static_cast<std::size_t>(ik[m][1]) * nx + static_cast<std::size_t>(ik[m][0])] = m;
+    const double d = std::hypot(lattice.points[m][0] - from[0], lattice.points[m][1] - from[1]);
+    if (d < nearest) {
+      nearest = d;
+      start = m;
+    }
+  }
+  if (!wet[start]) return reached;
+  std::vector<std::size_t> stack{start};
+  reached[start] = 1;
+  while (!stack.empty()) {
+    const std::size_t m = stack.back();
+    stack.pop_back();
+    const long i = ik[m][0], k = ik[m][1];
+    for (const auto& [di, dk] : {std::array<long, 2>{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, 1},
+                                 {1, -1}, {-1, 1}, {-1, -1}}) {
+      const long a = i + di, b = k + dk;
+      if (a < 0 || b < 0 || a > i_max || b > k_max) continue;
+      const std::size_t next = at[static_cast<std::size_t>(b) * nx + static_cast<std::size_t>(a)];
+      if (next == kNone || reached[next] || !wet[next]) continue;
+      reached[next] = 1;
+      stack.push_back(next);
+    }
+  }
+  return reached;
 }
 
 }  // namespace swemps::particles

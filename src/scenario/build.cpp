@@ -262,6 +262,27 @@ std::string no_water_message(const WaterBody& body, std::size_t points, double b
   return found + " (the depth raster is dry or nodata there)";
 }
 
+// A lake filled to a level from a point (LevelSurface::from): which lattice points hold its
+// water, connected to the point through points below the level (its shore's films included).
+// Empty: every point of the shape may.
+std::vector<char> lake_from_point(const WaterBody& body, const particles::Lattice& lattice,
+                                  const std::vector<double>& depth_at, std::size_t index) {
+  const auto* level = std::get_if<LevelSurface>(&body.depth);
+  if (!level || !level->from) return {};
+  std::vector<char> below(depth_at.size());
+  for (std::size_t m = 0; m < depth_at.size(); ++m) below[m] = depth_at[m] > 0.0 ? 1 : 0;
+  auto lake = particles::connected_to(lattice, below, *level->from);
+  if (std::find(lake.begin(), lake.end(), 1) == lake.end()) {
+    const auto [x, y] = *level->from;
+    throw ScenarioError(index_path("/water", index) + "/fill/from",
+                        "the lattice point nearest (" + fmt(x) + ", " + fmt(y) +
+                            ") is dry: the bed there is above surface_elevation " +
+                            fmt(level->surface_elevation_m) + " m",
+                        "a point in the basin to fill, where the bed is below the level");
+  }
+  return lake;
+}
+
 Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
   Seeded out;
   auto& p = out.particles;
@@ -277,13 +298,23 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
     const bool uniform = std::holds_alternative<UniformDepth>(body.depth);
     out.volumes.from_terrain = out.volumes.from_terrain || !uniform;
     double bed_min = std::numeric_limits<double>::infinity(), bed_max = -bed_min;
+    const std::size_t count = lattice.points.size();
+    std::vector<double> bed_at(count), depth_at(count);
+    for (std::size_t m = 0; m < count; ++m) {
+      const auto& point = lattice.points[m];
+      bed_at[m] = bed ? bed->elevation(point[0], point[1]) : 0.0;
+      bed_min = std::min(bed_min, bed_at[m]);
+      bed_max = std::max(bed_max, bed_at[m]);
+      depth_at[m] =
+          starting_depth(body, terrain.water_depth[i].get(), bed, point[0], point[1], bed_at[m]);
+    }
+    const std::vector<char> in_lake = lake_from_point(body, lattice, depth_at, i);
     std::size_t added = 0;
-    for (const auto& point : lattice.points) {
-      const double z_b = bed ? bed->elevation(point[0], point[1]) : 0.0;
-      bed_min = std::min(bed_min, z_b);
-      bed_max = std::max(bed_max, z_b);
-      const double h =
-          starting_depth(body, terrain.water_depth[i].get(), bed, point[0], point[1], z_b);
+    for (std::size_t m = 0; m < count; ++m) {
+      const auto& point = lattice.points[m];
+      const double z_b = bed_at[m], h = depth_at[m];
+      // Below the level but beyond the rim of a lake filled from a point: dry ground.
+      if (!in_lake.empty() && !in_lake[m]) continue;
       // NaN fails the test too: dry.
       if (!uniform && !(h > body.min_depth_m)) {
         if (h > 0.0) out.thin_film.push_back({point[0], point[1], z_b + h});

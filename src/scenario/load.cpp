@@ -398,9 +398,9 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
   // it, surely a mistake.
   s.shifting = in_range(o, "shifting", 0.0, false, 10.0, false,
                         "the particle shifting coefficient beta", s.shifting);
-  s.bed_term = choice(o, "bed_term", {"point", "balanced"}, "point") == "balanced"
-                   ? swe::BedTerm::balanced
-                   : swe::BedTerm::point;
+  s.bed_term = choice(o, "bed_term", {"point", "balanced"}, "balanced") == "point"
+                   ? swe::BedTerm::point
+                   : swe::BedTerm::balanced;
   // Below 1 the bound would cut the areas of water that has merely thinned a little.
   // Absent: the scheme's own default (swe::Settings::area_ratio_cap()).
   if (o.find("max_area_ratio") != nullptr) {

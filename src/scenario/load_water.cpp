@@ -10,6 +10,7 @@
 
 #include "json_reading.hpp"
 #include "load_sections.hpp"
+#include "swemps/particles/seeding.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace swemps::scenario {
@@ -101,11 +102,24 @@ ParsedWater read_water(const json& v, const std::string& path,
                           "a \"bed\" to fill (the depth is surface_elevation minus the bed "
                           "elevation)");
     }
-    const Object shape(*o.find("fill"), o.path("fill"), {"rectangle", "polygon"},
-                       "an object with exactly one of \"rectangle\" or \"polygon\"");
+    const Object shape(*o.find("fill"), o.path("fill"), {"rectangle", "polygon", "from"},
+                       "an object with exactly one of \"rectangle\" or \"polygon\", and "
+                       "optionally \"from\"");
     w.polygon = *read_shape(shape, false, domain);
-    w.depth = LevelSurface{
-        number(o, "surface_elevation", "a number (metres, the level of the water surface)")};
+    LevelSurface level{
+        number(o, "surface_elevation", "a number (metres, the level of the water surface)"),
+        std::nullopt};
+    if (const json* from = shape.find("from")) {
+      const auto point = pair(*from, shape.path("from"), "an [x, y] pair of numbers (m)");
+      if (!particles::point_in_polygon(w.polygon, point)) {
+        throw ScenarioError(shape.path("from"),
+                            "the point (" + fmt(point[0]) + ", " + fmt(point[1]) +
+                                ") outside the fill's shape",
+                            "a point inside the shape, in the water the lake grows from");
+      }
+      level.from = point;
+    }
+    w.depth = level;
   } else {
     forbid(o, "surface_elevation", form, with_fill);
     w.polygon = read_shape(o, true, domain).value_or(std::vector<Point>{});

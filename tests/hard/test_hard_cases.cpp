@@ -9,9 +9,12 @@
 // growth beyond round-off (1e-9 leaves room for the summation order of some 1e4 terms) is
 // made by the scheme. The scenes that check it run the default scheme, whose force is the
 // exact gradient of the potential energy (verification/invariants.hpp) and whose pairwise
-// dissipation takes what the time integration would otherwise put back; the seed scheme's
-// eq 6 is not such a gradient, and gains energy in a strong shock (measured below and in
-// docs/robustness.md).
+// dissipation takes what the time integration would otherwise put back: over a level bed, and
+// over a sloping one under the point bed term. The default balanced bed term is an external
+// force, exact at rest but not such a gradient: a sheet spreading over a dry slope gains
+// energy under it, and its scenes are held to the bound measured for them (kBalancedEnergy).
+// The seed scheme's eq 6 is not such a gradient either, and gains energy in a strong shock
+// (measured below and in docs/robustness.md).
 
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -32,6 +35,10 @@ namespace {
 const std::filesystem::path kCases = std::filesystem::path(SWEMPS_SOURCE_DIR) / "cases" / "hard";
 
 constexpr double kEnergyRoundOff = 1e-9;
+// The thin film under the balanced bed term: measured max (E - E0) / E0 = +6.4e-3 to +6.7e-3
+// over its 10 s (docs/method.md, "Where the sheet gains its energy"); 1e-2 leaves room for
+// round-off in the film's shoreline and fails on a gain that keeps growing.
+constexpr double kBalancedEnergy = 1e-2;
 
 std::vector<std::array<double, 2>> domain_box(const scenario::Scenario& scene) {
   const auto& d = scene.domain;
@@ -47,6 +54,7 @@ struct HardRun {
 struct RunOptions {
   bool closed = true;         // no water enters or leaves
   bool check_energy = true;   // closed and frictionless
+  double energy_growth = kEnergyRoundOff;  // the bound when checked
   std::function<void(scenario::Scenario&)> adjust = {};  // changes to the scene as loaded
   // Stoker comparison at this time (s), for the wet dam breaks.
   std::optional<double> stoker_time_s = {};
@@ -61,7 +69,7 @@ HardRun run_hard_case(const std::string& file, const RunOptions& options) {
   verification::InvariantBounds bounds;
   bounds.bed = built.terrain.bed;
   bounds.closed = options.closed;
-  bounds.energy_growth = options.check_energy ? kEnergyRoundOff : -1.0;
+  bounds.energy_growth = options.check_energy ? options.energy_growth : -1.0;
   bounds.inside_polygon = domain_box(scene);
   verification::InvariantMonitor monitor(sim, bounds);
   HardRun run;
@@ -201,32 +209,33 @@ TEST_CASE("Wet dam break 1000:1: millimetre water under a metre-deep bore", "[ha
 }
 
 TEST_CASE("Thin film: depths of 1e-5 m and below", "[hard]") {
-  const auto run = run_hard_case("thin-film.json", {});
-  require_invariants(run);
-  CHECK(run.record.min_depth_m < 1e-5);  // the case reaches the depths it is about
-}
-
-TEST_CASE("Thin film under the balanced bed term", "[hard]") {
   // The film piles against the wall, squeezed to 1/1000 of its seeded area, and the sheet's toe
   // runs over micrometres of water: the balanced term's plane is fitted through finer points of
   // the bed where a kernel reaches no neighbouring node, and cut back where only a sliver of the
   // support is wet (swe/balanced_bed_slope.cpp). Before either, the run broke down at 4-7 s with
   // particles at 20-120 m/s; with the sliver's plane uncut its fastest particle reached 6 m/s.
   //
-  // Energy is not checked: the balanced term is an external force, not the gradient of the
-  // particles' potential, and a sheet spreading over a dry or micrometre-wet bed gains energy
-  // under it (measured: max (E - E0) / E0 = +6.7e-3 here; docs/robustness.md).
+  // Energy is held to kBalancedEnergy: the balanced term is an external force, not the gradient
+  // of the particles' potential, and a sheet spreading over a dry or micrometre-wet bed gains
+  // energy under it (docs/robustness.md).
   RunOptions options;
-  options.check_energy = false;
-  options.adjust = [](scenario::Scenario& scene) {
-    scene.numerics.bed_term = swe::BedTerm::balanced;
-  };
+  options.energy_growth = kBalancedEnergy;
   const auto run = run_hard_case("thin-film.json", options);
   require_invariants(run);
   CHECK(run.record.min_depth_m < 1e-5);
   // Measured 0.26 m/s (0.21 stepped to the scene's outputs); the point bed term's run 0.19 m/s.
   // Particles flung by steep planes went past 1 m/s (6 m/s uncut).
   CHECK(run.record.max_speed_m_s < 0.5);
+}
+
+TEST_CASE("Thin film under the point bed term: no energy gained", "[hard]") {
+  // The point bed's force is the gradient of the particles' potential energy: the closed box
+  // never gains energy beyond round-off.
+  RunOptions options;
+  options.adjust = [](scenario::Scenario& scene) { scene.numerics.bed_term = swe::BedTerm::point; };
+  const auto run = run_hard_case("thin-film.json", options);
+  require_invariants(run);
+  CHECK(run.record.min_depth_m < 1e-5);  // the case reaches the depths it is about
 }
 
 TEST_CASE("Run-up and run-down on a 1:2 slope", "[hard]") {
@@ -264,13 +273,16 @@ TEST_CASE("Still water over rough terrain for 1e5 steps", "[hard]") {
   CHECK(run.record.max_speed_m_s < 1e-6);
 }
 
-TEST_CASE("Still water over rough terrain for an hour with the balanced bed term", "[hard]") {
+TEST_CASE("Still water over rough terrain for six hours with the default balanced bed term",
+          "[hard]") {
   const auto run = run_hard_case("still-water-rough-bed-balanced.json", {});
   require_invariants(run);
+  // Every particle kept: nothing balanced away at the beach.
+  CHECK(run.record.min_particles == run.record.max_particles);
   // The bed seen through the particles' kernels: a level surface gives no force at any
-  // particle, with no eddy viscosity and nothing balanced (measured 1.5e-14 m/s over six
-  // hours, docs/method.md). 1e-9 m/s leaves room for round-off on other compilers; an
-  // imbalance shows up as mm/s within a minute.
+  // particle, with no eddy viscosity and nothing balanced (measured under 3e-14 m/s at every
+  // hourly sample through the six hours, docs/method.md). 1e-9 m/s leaves room for round-off
+  // on other compilers; an imbalance shows up as mm/s within a minute.
   CHECK(run.record.max_speed_m_s < 1e-9);
 }
 

@@ -360,6 +360,52 @@ TEST_CASE("water from a depth raster wets only where the raster is deeper than m
   CHECK(built.volumes.from_terrain);
 }
 
+TEST_CASE("a lake filled from a point holds only the basin connected to it", "[scenario][build]") {
+  TempDir dir;
+  // Two basins 300 m deep at their floors, west and east, parted by a ridge at x = 500150 that
+  // rises to 315 m; filled to 310 m, both would hold water below the level.
+  write_raster(dir.path(), "bed.tif", [](double x, double) {
+    const double ridge = 500150.0, d = std::abs(x - ridge);
+    return d < 20.0 ? 315.0 : 300.0 + 0.05 * std::abs(d - 80.0);
+  });
+  json j = lake_scene();
+  j["water"][0]["fill"] = {{"rectangle",
+                            {{"x_min", 500000}, {"x_max", 500300}, {"y_min", 4000000},
+                             {"y_max", 4000200}}},
+                           {"from", {500060, 4000100}}};
+  j["water"][0]["surface_elevation"] = 310;
+  auto built = swemps::scenario::build(scene_in(dir, j));
+  const auto& p = built.simulation.particles();
+  REQUIRE(p.fluid_count() > 0);
+  double west = 0.0;
+  for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+    CHECK(p.x[i] < 500150.0);  // none in the eastern basin
+    west += p.volume[i];
+  }
+  // The whole western basin, every lattice point of it below the level (the 13 columns west of
+  // the ridge, 20 points each, on the raster's cell centres), each 10 m x 10 m x (310 - z).
+  double expected = 0.0;
+  for (double x = 500005.0; x < 500130.0; x += 10.0) {
+    const double d = std::abs(x - 500150.0);
+    expected += 20 * 100.0 * (310.0 - (300.0 + 0.05 * std::abs(d - 80.0)));
+  }
+  CHECK(west == Approx(expected).epsilon(1e-12));
+  CHECK(built.volumes.geometric_m3 == Approx(expected).epsilon(1e-12));
+
+  SECTION("the same fill without the point fills both basins") {
+    j["water"][0]["fill"].erase("from");
+    auto both = swemps::scenario::build(scene_in(dir, j));
+    CHECK(both.volumes.geometric_m3 > 1.9 * expected);
+  }
+  SECTION("a point on the ridge is an error at the key") {
+    j["water"][0]["fill"]["from"] = {500150, 4000100};
+    std::string path;
+    const auto message = build_error(dir, j, &path);
+    CHECK(path == "/water/0/fill/from");
+    CHECK_THAT(message, Contains("is dry: the bed there is above surface_elevation 310 m"));
+  }
+}
+
 TEST_CASE("an inflow and an outflow line run a scene that starts dry", "[scenario][build]") {
   TempDir dir;
   write_raster(dir.path(), "bed.tif", bowl);

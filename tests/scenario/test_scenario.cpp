@@ -716,6 +716,12 @@ std::vector<Broken> broken_terrain_scenes() {
       {"fill without a surface",
        raster_edited([](json& s) { s["water"][0].erase("surface_elevation"); }),
        "/water/0/surface_elevation", "found nothing (key missing), expected a number (metres"},
+      {"fill from a point outside its shape", raster_edited([](json& s) {
+         s["water"][0]["fill"]["from"] = {500050, 4000150};
+       }),
+       "/water/0/fill/from", "a point inside the shape, in the water the lake grows from"},
+      {"fill from a word", raster_edited([](json& s) { s["water"][0]["fill"]["from"] = "here"; }),
+       "/water/0/fill/from", "an [x, y] pair of numbers (m)"},
       {"fill without a shape",
        raster_edited([](json& s) { s["water"][0]["fill"] = json::object(); }), "/water/0/fill",
        "neither \"rectangle\" nor \"polygon\""},

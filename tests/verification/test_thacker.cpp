@@ -80,10 +80,33 @@ ThackerErrors run_thacker(Adjust&& adjust) {
 }  // namespace
 
 TEST_CASE("Thacker's planar surface keeps its shape for three periods", "[verification]") {
+  // The default numerics: the balanced bed term.
   const auto e = run_thacker([](scenario::Scenario&) {});
-  WARN("Thacker, 0.04 m, three periods: worst L1 of depth "
-       << e.worst_l1 << " of the volume, "
-       << "centroid off by " << e.worst_centroid_m << " m, mean velocity off by "
+  WARN("Thacker, 0.04 m, three periods, default numerics (balanced bed term): worst L1 of depth "
+       << e.worst_l1 << " of the volume, centroid off by " << e.worst_centroid_m
+       << " m, mean velocity off by " << e.worst_velocity_m_s << " m/s");
+  CHECK(std::abs(e.volume_change) < 1e-12);
+  // No water leaves the bowl: a thin particle that ran up the side comes back down.
+  CHECK(e.particles_at_end == e.particles_at_start);
+  // Measured 2.1-2.3 % at worst, here and when the run steps to the shipped scene's output
+  // times (the shoreline's particles are sensitive to the step sequence and to round-off); 0.66 %
+  // at the start. The balanced term keeps thin particles at the exact shoreline, and the maps'
+  // kernel sum reads each of them a support wide (docs/method.md, "The balanced bed term"). 3 %
+  // leaves room for round-off and fails if the surface loses its shape or the oscillation damps;
+  // the issue's bar is 5 %, and the surface read by differences with neighbours alone gave 6.9 %.
+  CHECK(e.worst_l1 < 0.03);
+  // The orbit's phase and amplitude: measured 6.8-7.4 mm off (the orbit's radius is 0.5 m);
+  // 1.5 cm is 1.7 degrees of the orbit (the difference form: 3.8 cm).
+  CHECK(e.worst_centroid_m < 0.015);
+  // The uniform velocity, 0.70 m/s: measured 0.013 m/s off at worst; 0.02 m/s is 3 %.
+  CHECK(e.worst_velocity_m_s < 0.02);
+}
+
+TEST_CASE("Thacker's planar surface under the point bed term", "[verification]") {
+  const auto e = run_thacker(
+      [](scenario::Scenario& scene) { scene.numerics.bed_term = swe::BedTerm::point; });
+  WARN("Thacker, point bed term: worst L1 of depth "
+       << e.worst_l1 << ", centroid off by " << e.worst_centroid_m << " m, mean velocity off by "
        << e.worst_velocity_m_s << " m/s");
   CHECK(std::abs(e.volume_change) < 1e-12);
   // Measured 1.49 % at worst (2.25 periods in), 0.66 % at the start: the kernel sum's
@@ -91,28 +114,9 @@ TEST_CASE("Thacker's planar surface keeps its shape for three periods", "[verifi
   // room for round-off differences between machines and fails if the surface loses its shape
   // or the oscillation damps.
   CHECK(e.worst_l1 < 0.018);
-  // The orbit's phase and amplitude: measured 5.6 mm off (the orbit's radius is 0.5 m, so
-  // 0.6 degree of phase). 1 cm, a quarter of the spacing, fails on a lag of 1.1 degrees.
+  // Measured 5.6 mm off (0.6 degree of the 0.5 m orbit's phase). 1 cm, a quarter of the
+  // spacing, fails on a lag of 1.1 degrees.
   CHECK(e.worst_centroid_m < 0.01);
-  // The uniform velocity, 0.70 m/s: measured 0.012 m/s off at worst; 0.02 m/s is 3 %.
-  CHECK(e.worst_velocity_m_s < 0.02);
-}
-
-TEST_CASE("Thacker's planar surface under the balanced bed term", "[verification]") {
-  const auto e = run_thacker(
-      [](scenario::Scenario& scene) { scene.numerics.bed_term = swe::BedTerm::balanced; });
-  WARN("Thacker, balanced bed term: worst L1 of depth "
-       << e.worst_l1 << ", centroid off by " << e.worst_centroid_m << " m, mean velocity off by "
-       << e.worst_velocity_m_s << " m/s");
-  CHECK(std::abs(e.volume_change) < 1e-12);
-  // No water leaves the bowl: a thin particle that ran up the side comes back down.
-  CHECK(e.particles_at_end == e.particles_at_start);
-  // Measured 2.1-2.3 % at worst, here and when the run steps to the shipped scene's output
-  // times (the shoreline's particles are sensitive to the step sequence and to round-off). The issue's bar is
-  // 5 %; the surface read by differences with neighbours alone gave 6.9 %.
-  CHECK(e.worst_l1 < 0.05);
-  // Measured 6.8-7.4 mm; 1.5 cm is 1.7 degrees of the 0.5 m orbit (the difference form: 3.8 cm).
-  CHECK(e.worst_centroid_m < 0.015);
-  // Measured 0.013 m/s, as under the point term.
+  // Measured 0.012 m/s off at worst.
   CHECK(e.worst_velocity_m_s < 0.02);
 }

@@ -36,7 +36,9 @@
 // water filled to a level; Thacker's oscillation to 2.1 % of the volume (1.5 % with the point
 // bed); a sheet spreading over a dry or micrometre-wet bed gains energy (up to 2 % of E0 in
 // 4 s), where the point bed's force, the gradient of the particles' potential energy, never
-// adds any. Hence an option (Settings::bed_term), not yet the default.
+// adds any. The default (Settings::bed_term) all the same: the point bed leaves a sea at rest
+// over a shelf moving at 0.36 m/s and a lake over a rough bed at 0.25 m/s before anything
+// happens, which no flood or tsunami study can start from.
 
 #include <memory>
 #include <span>

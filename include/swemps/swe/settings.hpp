@@ -33,12 +33,13 @@ enum class GradientVariant {
 
 // How the conservative scheme feels the bed (build.cpp picks the effect).
 enum class BedTerm {
-  // -g grad z_b at the particle beside the summed depth's force: accurate on moving shores,
-  // but a level surface over a bed rough at the particle scale is not at rest (docs/method.md).
+  // -g grad z_b at the particle beside the summed depth's force: the gradient of the
+  // particles' potential energy, so a closed box never gains energy, but a level surface over a
+  // bed rough at the particle scale is not at rest (docs/method.md).
   point,
   // The surface seen through each particle's kernel on the seeding lattice, its corrected
   // gradient in place of the pressure force (swe/balanced_bed_slope.hpp): water filled to a
-  // level stays at rest to round-off over any bed.
+  // level stays at rest to round-off over any bed. Default.
   balanced,
 };
 
@@ -65,7 +66,7 @@ struct Settings {
   // (area_ratio_cap()).
   std::optional<double> max_area_ratio;
   GradientVariant gradient = GradientVariant::mps;  // seed scheme only
-  BedTerm bed_term = BedTerm::point;                // conservative scheme only
+  BedTerm bed_term = BedTerm::balanced;             // conservative scheme only
   double min_time_step_s = 1e-8;  // a step below this stops the run: the flow has broken down
 
   // The cap in force. The seed scheme keeps the 4 its tables were measured with
