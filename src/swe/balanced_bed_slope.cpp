@@ -201,21 +201,17 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
   const double level = held - (mx * sx + my * sy) / w;
   if (!std::isfinite(sx) || !std::isfinite(sy)) return WetSetFit::undetermined;
   slope = {sx, sy};
-  if (wetted) {
-    wetted->resize(count);
-    bool same = true;
-    for (std::size_t k = 0; k < count; ++k) {
-      const bool wet_here = b.z[k] - sx * b.ox[k] - sy * b.oy[k] < level;
-      (*wetted)[k] = wet_here ? 1 : 0;
-      same = same && wet_here == (wet ? static_cast<bool>((*wet)[k]) : true);
-    }
-    return same ? WetSetFit::exact : WetSetFit::other_set;
-  }
+  if (wetted) wetted->resize(count);
+  bool same = true;
   for (std::size_t k = 0; k < count; ++k) {
     const bool wet_here = b.z[k] - sx * b.ox[k] - sy * b.oy[k] < level;
-    if (wet_here != (wet ? static_cast<bool>((*wet)[k]) : true)) return WetSetFit::other_set;
+    if (wetted) (*wetted)[k] = wet_here ? 1 : 0;
+    if (wet_here != (wet ? static_cast<bool>((*wet)[k]) : true)) {
+      same = false;
+      if (!wetted) break;  // the set is all that is asked for
+    }
   }
-  return WetSetFit::exact;
+  return same ? WetSetFit::exact : WetSetFit::other_set;
 }
 
 // The plane of a partly dry support by its wet set alone: from a first guess of the wet set in

@@ -41,8 +41,9 @@ struct UniformDepth {
 // A lake filled to a level: depth z_s - z_b(x), which needs a bed.
 struct LevelSurface {
   double surface_elevation_m = 0.0;  // z_s
-  // Set: the lake is only the water connected to this point (through lattice points deeper than
-  // min_depth), so that a basin fills to its level and the lower ground beyond its rim stays dry.
+  // Set: the lake is only the water connected to this point (through lattice points below the
+  // level, its shore's films included), so that a basin fills to its level and the lower ground
+  // beyond its rim stays dry.
   std::optional<Point> from;
 };
 // Depth read from a raster; its nodata cells are dry.
