@@ -71,6 +71,13 @@ constexpr int kFinestSubdivision = 64;
 struct NodeBuffer {
   std::vector<double> z, w, wx, wy, ox, oy, tilted;
   std::vector<char> wet, previous_wet, wetted, wetted_by_all_wet_plane;
+  // The lattice index of each node (empty for the finer points), and the rim search's work
+  // space (drop_ground_beyond_rims).
+  std::vector<std::size_t> node;
+  std::vector<long> column, row, slot;
+  std::vector<std::size_t> pending;
+  std::vector<char> reached, beyond_rim, previous_beyond_rim;
+  std::vector<double> kept_w;
 };
 
 // How finely the bed is seen by a kernel of radius 2h: through the lattice's own nodes while the
@@ -91,6 +98,9 @@ int subdivision(double cell_size, double h) {
 template <class K>
 void gather_nodes(const BedLattice& lattice, double x, double y, double h, NodeBuffer& b) {
   for (auto* v : {&b.z, &b.w, &b.wx, &b.wy, &b.ox, &b.oy}) v->clear();
+  b.node.clear();
+  b.column.clear();
+  b.row.clear();
   const int m = subdivision(lattice.cell_size_m(), h);
   const double a = lattice.node_area_m2() / static_cast<double>(m * m);
   auto add = [&](double ox, double oy, double r2, double z) {
@@ -107,10 +117,123 @@ void gather_nodes(const BedLattice& lattice, double x, double y, double h, NodeB
     b.oy.push_back(oy);
   };
   if (m == 1) {
-    lattice.for_each_node_offset_within(x, y, 2.0 * h, add);
+    lattice.for_each_node_offset_within(
+        x, y, 2.0 * h, [&](double ox, double oy, double r2, double z, LatticeNode node) {
+          const std::size_t before = b.z.size();
+          add(ox, oy, r2, z);
+          if (b.z.size() == before) return;
+          b.node.push_back(node.index);
+          b.column.push_back(node.column);
+          b.row.push_back(node.row);
+        });
   } else {  // see subdivision()
     lattice.for_each_fine_point_within(x, y, 2.0 * h, m, add);
   }
+}
+
+// Which lattice nodes hold water this step, by node: those within sqrt(A/2) of a particle, fluid
+// or ghost, and the one nearest it (apply_with). Null: no rim search (drop_ground_beyond_rims).
+struct WaterOnNodes {
+  const std::vector<char>* occupied = nullptr;
+};
+
+// Lower ground beyond a rim: the nodes of i's support below the level that holds its depth sum
+// (level_holding), that neither hold water nor connect to a node that does through nodes below
+// that level (all eight neighbours, as a lake is filled from a point). Drops them from b and
+// returns true, with `level` (on entry: the level on all of b's nodes) the level on the nodes
+// kept; returns false and leaves b as it was when there are none.
+//
+// Why: a particle in a finger of a lake one cell wide sums its depth mostly from itself, so its
+// area is several cells and its support reaches across the finger's rim to lower ground beyond,
+// which holds water in (*) that no particle carries: the lake at rest drains towards it
+// (measured on the Jacksboro basins: 5e-4 m/s within a second). The water a plane puts on a node
+// is water that could be there; a node walled off by higher ground, with no water of its own,
+// cannot hold any until the water tops the wall. Dropping such a node leaves rest exact: every
+// seeded particle sits on a node it marks, and the nodes of its lake connect to it below the
+// level. Dropped nodes raise the level, which may put more of the ground beyond below it (or
+// top the rim): the search is repeated with the new level until the dropped set settles.
+constexpr int kRimPasses = 4;
+
+bool drop_ground_beyond_rims(const WaterOnNodes& water, std::size_t own_node, double depth,
+                             NodeBuffer& b, double& level) {
+  const std::size_t count = b.z.size();
+  if (!water.occupied || count == 0 || b.node.size() != count || !std::isfinite(level))
+    return false;
+  // Most partly dry supports (a shore on a hillside) have water on every node below the level:
+  // nothing can be beyond a rim, and one pass tells.
+  const auto& occupied = *water.occupied;
+  bool dry_below = false;
+  for (std::size_t k = 0; k < count && !dry_below; ++k)
+    dry_below = b.z[k] < level && !occupied[b.node[k]];
+  if (!dry_below) return false;
+  // The support's box of nodes, and where each node of the box sits in b (-1: not in it).
+  const auto [first_col, last_col] = std::minmax_element(b.column.begin(), b.column.end());
+  const auto [first_row, last_row] = std::minmax_element(b.row.begin(), b.row.end());
+  const long col0 = *first_col, row0 = *first_row;
+  const long width = *last_col - col0 + 1, height = *last_row - row0 + 1;
+  b.slot.assign(static_cast<std::size_t>(width * height), -1);
+  const auto box_col = [&](std::size_t k) { return b.column[k] - col0; };
+  const auto box_row = [&](std::size_t k) { return b.row[k] - row0; };
+  for (std::size_t k = 0; k < count; ++k)
+    b.slot[static_cast<std::size_t>(box_row(k) * width + box_col(k))] = static_cast<long>(k);
+
+  double kept_level = level;
+  b.beyond_rim.assign(count, 0);
+  bool any_dropped = false;
+  for (int pass = 0; pass < kRimPasses; ++pass) {
+    // Flood from the nodes that hold water through the nodes below the level.
+    b.reached.assign(count, 0);
+    b.pending.clear();
+    for (std::size_t k = 0; k < count; ++k) {
+      if ((occupied[b.node[k]] && b.z[k] < kept_level) || b.node[k] == own_node) {
+        b.reached[k] = 1;
+        b.pending.push_back(k);
+      }
+    }
+    while (!b.pending.empty()) {
+      const std::size_t k = b.pending.back();
+      b.pending.pop_back();
+      const long col = box_col(k), row = box_row(k);
+      for (long r = std::max(0L, row - 1); r <= std::min(height - 1, row + 1); ++r) {
+        for (long c = std::max(0L, col - 1); c <= std::min(width - 1, col + 1); ++c) {
+          const long t = b.slot[static_cast<std::size_t>(r * width + c)];
+          if (t < 0) continue;
+          const auto u = static_cast<std::size_t>(t);
+          if (b.reached[u] || !(b.z[u] < kept_level)) continue;
+          b.reached[u] = 1;
+          b.pending.push_back(u);
+        }
+      }
+    }
+    b.previous_beyond_rim = b.beyond_rim;
+    bool any = false;
+    for (std::size_t k = 0; k < count; ++k) {
+      b.beyond_rim[k] = !b.reached[k] && b.z[k] < kept_level ? 1 : 0;
+      any = any || b.beyond_rim[k];
+    }
+    if (b.beyond_rim == b.previous_beyond_rim) break;
+    any_dropped = any;
+    b.kept_w.resize(count);
+    for (std::size_t k = 0; k < count; ++k) b.kept_w[k] = b.beyond_rim[k] ? 0.0 : b.w[k];
+    kept_level = any ? level_holding(b.z, b.kept_w, depth) : level;
+    if (!std::isfinite(kept_level)) return false;  // no water of its own within reach: leave b
+  }
+  if (!any_dropped) return false;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (b.beyond_rim[k]) continue;
+    for (auto* v : {&b.z, &b.w, &b.wx, &b.wy, &b.ox, &b.oy}) (*v)[kept] = (*v)[k];
+    b.node[kept] = b.node[k];
+    b.column[kept] = b.column[k];
+    b.row[kept] = b.row[k];
+    ++kept;
+  }
+  for (auto* v : {&b.z, &b.w, &b.wx, &b.wy, &b.ox, &b.oy}) v->resize(kept);
+  b.node.resize(kept);
+  b.column.resize(kept);
+  b.row.resize(kept);
+  level = kept_level;
+  return true;
 }
 
 // The magnitude of the bed's slope seen through the kernel, |sum_k grad w_k (z_k - z_mean)| over
@@ -246,24 +369,34 @@ bool wet_set_slope(double depth, double grad_h_x, double grad_h_y, NodeBuffer& b
 // J = sum_wet grad w_k (o_k - o_mean)^T (o_mean: the wet weights' centroid, through d eta_i/d s).
 // A step that raises the residual (it crossed a change of the wet set) is halved.
 std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, double grad_h_y,
+                                    const WaterOnNodes& water, std::size_t own_node,
                                     NodeBuffer& b) {
-  const std::size_t count = b.z.size();
-  b.tilted.resize(count);
   // Every node wet: the plane of grad h_i and the bed's slope through the kernel. When it wets
   // them all it is the root; when it does not, it is still the plane a support too thinly wet to
   // hold one falls back on (below).
   std::array<double, 2> all_wet{};
-  const WetSetFit interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr,
-                                              kSmallestJacobian, all_wet,
-                                              &b.wetted_by_all_wet_plane);
-  // A partly dry support: its wet set, first guessed as the nodes under the level that holds the
-  // depth sum with no slope, then (where that set holds no plane, as a film's few nodes on a
-  // hillside do not) as the nodes the all-wet plane wets.
+  WetSetFit interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian,
+                                        all_wet, &b.wetted_by_all_wet_plane);
+  // A partly dry support: lower ground beyond a rim left out (drop_ground_beyond_rims), then its
+  // wet set, first guessed as the nodes under the level that holds the depth sum with no slope,
+  // then (where that set holds no plane, as a film's few nodes on a hillside do not) as the
+  // nodes the all-wet plane wets.
   std::array<double, 2> by_wet_set{};
-  const bool exact = interior == WetSetFit::exact;
+  bool exact = interior == WetSetFit::exact;
   bool solved = exact;
+  double level = std::numeric_limits<double>::quiet_NaN();
   if (!solved) {
-    const double level = level_holding(b.z, b.w, depth);
+    level = level_holding(b.z, b.w, depth);
+    if (drop_ground_beyond_rims(water, own_node, depth, b, level)) {
+      interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian,
+                                  all_wet, &b.wetted_by_all_wet_plane);
+      exact = interior == WetSetFit::exact;
+      solved = exact;
+    }
+  }
+  const std::size_t count = b.z.size();
+  b.tilted.resize(count);
+  if (!solved) {
     if (std::isfinite(level)) {
       b.wet.resize(count);
       for (std::size_t k = 0; k < count; ++k) b.wet[k] = b.z[k] < level ? 1 : 0;
@@ -388,11 +521,25 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
 }
 
 template <class K>
-void apply_with(const BedSource& bed, const BedLattice& lattice, StepContext& c) {
+void apply_with(const BedSource& bed, const BedLattice& lattice, std::vector<char>& occupied,
+                StepContext& c) {
   auto& p = c.particles;
   const std::size_t n = p.fluid_count();
   sample_bed_at_particles(bed, p);
   const double g = c.settings.gravity_m_s2;
+  // The nodes that hold water: those within half a particle's spacing, 0.5 sqrt(A_i), of it and
+  // the one nearest it, ghosts included (their water is the mirror image of their particle's, on the nodes mirrored beyond
+  // the domain). A particle seeded on a node marks only that node; one spread over several
+  // cells (a thin sheet, a finger of a lake) marks the nodes its water covers.
+  occupied.assign(lattice.node_count(), 0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t node = lattice.nearest_node(p.x[i], p.y[i]);
+    if (node < occupied.size()) occupied[node] = 1;
+    lattice.for_each_node_offset_within(
+        p.x[i], p.y[i], std::sqrt(0.5 * p.area[i]),
+        [&](double, double, double, double, LatticeNode node) { occupied[node.index] = 1; });
+  }
+  const WaterOnNodes water{&occupied};
 #pragma omp parallel if (n > static_cast <std::size_t>(parallel_threshold))
   {
     NodeBuffer nodes;
@@ -416,7 +563,8 @@ void apply_with(const BedSource& bed, const BedLattice& lattice, StepContext& c)
         py += pressure * dy;
       }
       gather_nodes<K>(lattice, p.x[i], p.y[i], hi, nodes);
-      const auto [sx, sy] = surface_slope(p.depth[i], hi, grad_h_x, grad_h_y, nodes);
+      const auto [sx, sy] = surface_slope(p.depth[i], hi, grad_h_x, grad_h_y, water,
+                                          lattice.nearest_node(p.x[i], p.y[i]), nodes);
       c.accel_x[i] += -g * sx + g * px;
       c.accel_y[i] += -g * sy + g * py;
     }
@@ -454,7 +602,7 @@ double level_holding(std::span<const double> z, std::span<const double> w, doubl
 void BalancedBedSlope::apply(StepContext& context) {
   with_kernel_shape(context.kernel.shape(), [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    apply_with<K>(*bed_, *lattice_, context);
+    apply_with<K>(*bed_, *lattice_, occupied_, context);
   });
 }
 

@@ -69,8 +69,7 @@ class BalancedBedSlope final : public Effect {
  private:
   std::shared_ptr<const BedSource> bed_;
   std::shared_ptr<const BedLattice> lattice_;
-  std::vector<double> surface_;
-  std::vector<double> coverage_;  // eta, fluid particles then ghosts: kept to reuse its memory
+  std::vector<char> occupied_;    // by lattice node: whether a particle sits nearest to it
 };
 
 }  // namespace swemps::swe

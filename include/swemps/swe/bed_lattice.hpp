@@ -29,6 +29,13 @@ struct BedLatticeGeometry {
   double node_area_m2 = 1.0;
 };
 
+// Where a node sits in the lattice's stored block: its column and row, and its index
+// row * columns() + column.
+struct LatticeNode {
+  std::size_t index;
+  long column, row;
+};
+
 struct DomainBox {
   double x_min, x_max, y_min, y_max;
 };
@@ -47,6 +54,20 @@ class BedLattice {
   void raise_node_at(double x_m, double y_m, double level_m);
 
   double node_area_m2() const { return geometry_.node_area_m2; }
+  // The nodes are numbered row by row, columns() to a row: node index + 1 is the next along x,
+  // index + columns() the next along y.
+  std::size_t node_count() const { return z_.size(); }
+  std::size_t columns() const { return static_cast<std::size_t>(nx_); }
+  // The index of the node nearest (x, y), or node_count() where that node lies beyond the
+  // stored block.
+  std::size_t nearest_node(double x, double y) const {
+    const double i = std::round((x - first_x_) / geometry_.dx_m);
+    const double k = std::round((y - first_y_) / geometry_.dy_m);
+    if (!(i >= 0.0 && k >= 0.0 && i < static_cast<double>(nx_) && k < static_cast<double>(ny_)))
+      return z_.size();
+    return static_cast<std::size_t>(k) * static_cast<std::size_t>(nx_) +
+           static_cast<std::size_t>(i);
+  }
   // The longer side of a lattice cell.
   double cell_size_m() const { return std::max(geometry_.dx_m, geometry_.dy_m); }
 
@@ -54,12 +75,12 @@ class BedLattice {
   // and its elevation. Nodes beyond the lattice's margin are not visited.
   template <class Visit>
   void for_each_node_within(double x, double y, double radius, Visit&& visit) const {
-    for_each_node_offset_within(x, y, radius,
-                                [&](double, double, double r2, double z) { visit(r2, z); });
+    for_each_node_offset_within(
+        x, y, radius, [&](double, double, double r2, double z, LatticeNode) { visit(r2, z); });
   }
 
-  // As for_each_node_within, with each node's offset from (x, y) first:
-  // visit(x_node - x, y_node - y, r2, z).
+  // As for_each_node_within, with each node's offset from (x, y) first and its place in the
+  // lattice last: visit(x_node - x, y_node - y, r2, z, LatticeNode).
   template <class Visit>
   void for_each_node_offset_within(double x, double y, double radius, Visit&& visit) const {
     const double gx = (x - first_x_) / geometry_.dx_m, gy = (y - first_y_) / geometry_.dy_m;
@@ -74,7 +95,7 @@ class BedLattice {
       for (long i = i0; i <= i1; ++i) {
         const double dx = first_x_ + static_cast<double>(i) * geometry_.dx_m - x;
         const double r2 = dx * dx + dy * dy;
-        if (r2 < r2_max) visit(dx, dy, r2, row[i]);
+        if (r2 < r2_max) visit(dx, dy, r2, row[i], LatticeNode{static_cast<std::size_t>(k * nx_ + i), i, k});
       }
     }
   }
