@@ -260,7 +260,8 @@ bool ConservativeScheme::regularising_shift(const particles::SweParticles& p,
                                             std::span<double> shift_y) {
   if (shifting_ == 0.0) return false;
   // The concentration field of this step's force pass: the same list and fields.
-  particle_shift(p, nl, kernel_.shape(), shifting_, dt_s, concentration_, shift_x, shift_y);
+  particle_shift(p, nl, kernel_.shape(), shifting_, dt_s, concentration_, celerity_, shift_x,
+                 shift_y);
   return true;
 }
 

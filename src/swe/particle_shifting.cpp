@@ -88,8 +88,8 @@ void concentration_gradients(const particles::SweParticles& p, const neighbors::
 
 template <class K>
 void shift_with(const particles::SweParticles& p, const neighbors::NeighborList& nl, double beta,
-                double dt_s, const ConcentrationField& field, std::span<double> shift_x,
-                std::span<double> shift_y) {
+                double dt_s, const ConcentrationField& field, std::span<const double> celerity,
+                std::span<double> shift_x, std::span<double> shift_y) {
   const std::size_t n = p.fluid_count();
   const auto& concentration = field.concentration;
   const auto& gx = field.gradient_x;
@@ -122,8 +122,11 @@ void shift_with(const particles::SweParticles& p, const neighbors::NeighborList&
         mx += w * b.gx[k];
         my += w * b.gy[k];
       }
-      // Only the particle-scale part of grad C moves the particle (see the header).
-      const double diffusion = beta * p.smoothing_length[i] * speed * dt_s;
+      // Only the particle-scale part of grad C moves the particle (see the header), and slow
+      // water less than in proportion to its speed (kSlowFroude).
+      const double froude = speed / celerity[i];
+      const double slowing = froude < kSlowFroude ? froude / kSlowFroude : 1.0;
+      const double diffusion = beta * p.smoothing_length[i] * speed * dt_s * slowing;
       double sx = -diffusion * (gx[i] - mx / weight), sy = -diffusion * (gy[i] - my / weight);
       const double largest = kLargestShift * std::sqrt(p.area[i]);
       const double length = std::sqrt(sx * sx + sy * sy);
@@ -149,10 +152,11 @@ void concentration_field(const particles::SweParticles& p, const neighbors::Neig
 
 void particle_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
                     KernelShape shape, double beta, double dt_s, const ConcentrationField& field,
-                    std::span<double> shift_x, std::span<double> shift_y) {
+                    std::span<const double> celerity, std::span<double> shift_x,
+                    std::span<double> shift_y) {
   with_kernel_shape(shape, [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    shift_with<K>(p, nl, beta, dt_s, field, shift_x, shift_y);
+    shift_with<K>(p, nl, beta, dt_s, field, celerity, shift_x, shift_y);
   });
 }
 

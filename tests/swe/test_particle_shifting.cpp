@@ -51,7 +51,9 @@ Shifts shifts_of(swe::Simulation& sim, double beta, double dt) {
   swe::ConcentrationField field;
   const auto shape = swe::Settings{}.kernel;
   swe::concentration_field(p, sim.neighbor_list(), shape, field);
-  swe::particle_shift(p, sim.neighbor_list(), shape, beta, dt, field, s.x, s.y);
+  std::vector<double> celerity(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) celerity[i] = std::sqrt(9.81 * p.depth[i]);
+  swe::particle_shift(p, sim.neighbor_list(), shape, beta, dt, field, celerity, s.x, s.y);
   return s;
 }
 
@@ -100,6 +102,28 @@ TEST_CASE("particle shifting: a particle leaving a column is moved on into the g
     // Symmetric in y about the nudged particle's row: no sideways shift of it.
     CHECK(std::abs(s.y[i]) < 1e-9 * std::abs(s.x[i]));
   }
+}
+
+TEST_CASE("particle shifting: slow water is shifted as the square of its speed",
+          "[swe][shifting]") {
+  // The stretched columns of the test above, 1 m deep (celerity 3.13 m/s), moving at speeds
+  // either side of Froude 0.1 (kSlowFroude). Above it the shift grows as |u|; below it as |u|^2,
+  // so that about rest the shift is of second order (a round-off velocity moves nothing).
+  const double dx = 0.125, dy = 0.025, nudge = 0.005;
+  const auto shift_at = [&](double u) {
+    swe::Simulation sim(columns(2.0, dx, dy, u, nudge), swe::Settings{}, box(2.0, true), {});
+    const auto s = shifts_of(sim, 2.0, 0.01);
+    const auto& p = sim.particles();
+    return s.x[nearest(p, 1.0 + dx / 2 + nudge, 0.5 + dy / 2)];
+  };
+  const double celerity = std::sqrt(9.81);
+  const double slow = 0.02 * celerity, fast = 0.2 * celerity;
+  REQUIRE(shift_at(slow) > 0.0);
+  CHECK(shift_at(2.0 * slow) / shift_at(slow) == Approx(4.0).epsilon(1e-9));
+  CHECK(shift_at(2.0 * fast) / shift_at(fast) == Approx(2.0).epsilon(1e-9));
+  // Continuous at Froude 0.1.
+  const double edge = swe::kSlowFroude * celerity;
+  CHECK(shift_at(edge * (1.0 - 1e-9)) == Approx(shift_at(edge)).epsilon(1e-6));
 }
 
 TEST_CASE("particle shifting: none at the water's edge, never more than the cap",

@@ -8,7 +8,7 @@
 //   grad C_i = sum_j A_j (dW(r_ij, h_i) + dW(r_ij, h_j)) / 2 e_ij,
 //   <grad C>_i = sum_j A_j W(r_ij, h_i) grad C_j / sum_j A_j W(r_ij, h_i)   (j: i and its
 //                                                                            fluid neighbours),
-//   delta x_i = -D_i (grad C_i - <grad C>_i),   D_i = beta h_i |u_i| dt.
+//   delta x_i = -D_i (grad C_i - <grad C>_i),   D_i = beta h_i |u_i| dt min(1, Fr_i / 0.1).
 //
 // Why: a rarefaction (a dam break, a flood spreading down a valley) stretches the water in one
 // direction only, so a lattice of particles becomes columns whose spacing outgrows the kernel;
@@ -50,15 +50,24 @@ void concentration_field(const particles::SweParticles& p, const neighbors::Neig
                          KernelShape shape, ConcentrationField& field);
 
 // Writes each fluid particle's shift for a step of dt into shift_x, shift_y (sized to the
-// fluid particles), from `field` and the particles' fields of the last summation, ghosts
-// included.
+// fluid particles), from `field`, the particles' fields of the last summation, ghosts
+// included, and each fluid particle's celerity sqrt(g d_i).
 void particle_shift(const particles::SweParticles& p, const neighbors::NeighborList& nl,
                     KernelShape shape, double beta, double dt_s, const ConcentrationField& field,
-                    std::span<double> shift_x, std::span<double> shift_y);
+                    std::span<const double> celerity, std::span<double> shift_x,
+                    std::span<double> shift_y);
 
 // The concentration below which a particle counts as at the water's edge and is not shifted.
 inline constexpr double kEdgeConcentration = 0.95;
 // A shift is at most this fraction of the particle's spacing sqrt(A_i).
 inline constexpr double kLargestShift = 0.1;
+// Below this Froude number |u_i| / sqrt(g d_i), D_i falls in proportion to it: the shift goes
+// as |u|^2 in slow water, so that it is of second order about rest. Why: a shift in proportion
+// to |u| is of first order, and where the particles at rest are unevenly spread (a lake's
+// fingers over a DEM, particles of several cells' area with few neighbours) a velocity of
+// round-off moved them off their balanced places by enough to drive a larger velocity: a lake
+// grew from 1e-9 to metres per second within minutes (docs/method.md, "Particle shifting").
+// The columns the shift is for open in fast water, a rarefaction's fan.
+inline constexpr double kSlowFroude = 0.1;
 
 }  // namespace swemps::swe
