@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -230,6 +231,8 @@ class RasterRoughness final : public swe::RoughnessSource {
 struct Seeded {
   particles::SweParticles particles;
   std::vector<double> target_depth_m;  // the depth each particle starts with, by index
+  // By index: whether the particle's depth came from the terrain (a level or a depth raster).
+  std::vector<std::uint8_t> from_terrain;
   StartingVolumes volumes;
   // The finest body's lattice, continued over the domain as the bed the water sees
   // (swe/bed_lattice.hpp); absent without water bodies.
@@ -324,6 +327,7 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
       p.add_fluid(point[0], point[1], body.velocity_m_s[0], body.velocity_m_s[1],
                   h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b);
       out.target_depth_m.push_back(h);
+      out.from_terrain.push_back(uniform ? 0 : 1);
       out.volumes.geometric_m3 += h * lattice.cell_area_m2;
       ++added;
     }
@@ -580,6 +584,12 @@ BuiltScene build(const Scenario& scene) {
           "from depth x cell area instead");
     }
     seeded.volumes.balance = report;
+  } else if (std::find(seeded.from_terrain.begin(), seeded.from_terrain.end(), 1) !=
+             seeded.from_terrain.end()) {
+    // Water from terrain is at rest where its summed areas are (see the method's comment).
+    // Balanced volumes are left out: balancing makes each area V / target, and may remove
+    // particles, which the flags would not follow.
+    sim.take_summed_areas_as_created(std::move(seeded.from_terrain));
   }
   return BuiltScene{std::move(terrain), std::move(sim), seeded.volumes};
 }

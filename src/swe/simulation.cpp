@@ -517,6 +517,20 @@ VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth
   return report;
 }
 
+void Simulation::take_summed_areas_as_created(std::vector<std::uint8_t> which) {
+  const std::size_t n = particles_.fluid_count();
+  if (which.size() != n)
+    throw std::invalid_argument("take_summed_areas_as_created: one flag per fluid particle needed");
+  if (n == 0) return;
+  update_fields(true);
+  for (std::size_t i = 0; i < n; ++i) {
+    // update_fields() sorted the particles: order_[i] is the index particle i had before.
+    if (which[order_[i]]) particles_.initial_area[i] = particles_.area[i];
+  }
+  fresh_ = false;
+  has_snapshot_ = false;  // the areas changed: the next refresh takes a new snapshot
+}
+
 bool Simulation::sorting_due() const {
   // Particles move at most about half a spacing per step (eq 13), so memory order decays
   // slowly; a particle set that grew or shrank (splitting, inflow, outflow) is sorted at once,

@@ -101,6 +101,13 @@ class Simulation {
   // removed. Resets the ledger's initial volume. Call before the first step.
   VolumeBalanceReport balance_volumes(std::vector<double> target_depth_m, double tolerance_m,
                                       int max_iterations);
+  // Water from terrain at rest (docs/method.md, "Lakes over the Jacksboro DEM"): the particles
+  // flagged in `which` (indexed like particles() before the call) take the area their first
+  // depth sum gives as the area they were created with (initial_area, A_0), which splitting,
+  // merging and the radius cap measure areas against. A shore or finger particle's summed
+  // area is not its lattice cell's, and measured against the cell, splitting and merging
+  // fired in lakes at rest and set them moving. Call before the first step.
+  void take_summed_areas_as_created(std::vector<std::uint8_t> which);
   // eq 13 on current fields; throws SimulationError if the step is below the floor or a
   // value is non-finite.
   double stable_time_step();
