@@ -19,6 +19,7 @@
 
 #include "../support/netcdf_values.hpp"
 #include "../support/run_command.hpp"
+#include "../support/temp_dir.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 
@@ -32,14 +33,6 @@ Result run(const std::string& command) { return swemps::testing::run_command(com
 
 bool have(const std::string& tool) {
   return std::system(("command -v " + tool + " >/dev/null 2>&1").c_str()) == 0;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const auto dir =
-      fs::temp_directory_path() / ("swemps-cli-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 const std::string cli = SWEMPS_CLI;
@@ -68,7 +61,8 @@ TEST_CASE("bad command lines exit 2 with one clear message", "[cli]") {
 }
 
 TEST_CASE("a broken scenario exits 2 naming the JSON path", "[cli]") {
-  const auto dir = fresh_dir("bad");
+  const swemps::testing::TempDir scratch("cli-bad");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "scenario.json")
       << R"({"end_time": 1, "domain": {"x_min": 0, "x_max": 1, "y_min": 0, "y_max": 1},
     "water": [{"rectangle": {"x_min": 0, "x_max": 1, "y_min": 0, "y_max": 1}, "dpeth": 0.1, "spacing": 0.1}]})";
@@ -84,7 +78,8 @@ TEST_CASE("a broken scenario exits 2 naming the JSON path", "[cli]") {
 }
 
 TEST_CASE("an output folder that does not exist exits 4 and leaves nothing behind", "[cli]") {
-  const auto dir = fresh_dir("noout");
+  const swemps::testing::TempDir scratch("cli-noout");
+  const fs::path& dir = scratch.path();
   const auto r = run(cli + " run " + ritter + " -q -o " + (dir / "missing" / "out.nc").string());
   CHECK(r.status == 4);
   CHECK_THAT(r.output, Catch::Contains("out.nc"));
@@ -93,7 +88,8 @@ TEST_CASE("an output folder that does not exist exits 4 and leaves nothing behin
 }
 
 TEST_CASE("the Ritter case runs end to end and its file opens in ncdump and gdalinfo", "[cli]") {
-  const auto dir = fresh_dir("ritter");
+  const swemps::testing::TempDir scratch("cli-ritter");
+  const fs::path& dir = scratch.path();
   const auto out = dir / "ritter.nc";
   const auto r = run(cli + " run " + ritter + " --threads 2 -o " + out.string());
   INFO(r.output);
@@ -169,7 +165,8 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& name) {
 
 TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its volume balance",
           "[cli]") {
-  const auto dir = fresh_dir("raster");
+  const swemps::testing::TempDir scratch("cli-raster");
+  const fs::path& dir = scratch.path();
   write_bowl(dir / "bed.tif");
   // A lake moving east across an outflow line, and a flood entering from the west edge.
   std::ofstream(dir / "scenario.json") << R"({
@@ -303,7 +300,8 @@ const char* kTinyNsScene = R"({
 }  // namespace
 
 TEST_CASE("the point bed term warns of a bed finer than the particles", "[cli]") {
-  const auto dir = fresh_dir("rough-bed-point");
+  const swemps::testing::TempDir scratch("cli-rough-bed-point");
+  const fs::path& dir = scratch.path();
   write_bowl(dir / "bed.tif");
   std::ofstream(dir / "scenario.json") << R"({
     "end_time": 0.5,
@@ -325,7 +323,8 @@ TEST_CASE("the point bed term warns of a bed finer than the particles", "[cli]")
 
 TEST_CASE("under the point bed term a raster three particle spacings fine or coarser draws no warning",
           "[cli]") {
-  const auto dir = fresh_dir("smooth-bed");
+  const swemps::testing::TempDir scratch("cli-smooth-bed");
+  const fs::path& dir = scratch.path();
   write_bowl(dir / "bed.tif");
   std::ofstream(dir / "scenario.json") << R"({
     "end_time": 0.5,
@@ -345,7 +344,8 @@ TEST_CASE("under the point bed term a raster three particle spacings fine or coa
 
 TEST_CASE("a model ns scene writes column depths that hold its water, and a series table",
           "[cli]") {
-  const auto dir = fresh_dir("ns");
+  const swemps::testing::TempDir scratch("cli-ns");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "scenario.json") << kTinyNsScene;
   const auto r = run(cli + " run " + (dir / "scenario.json").string() + " --threads 2");
   INFO(r.output);
@@ -442,7 +442,8 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
 }
 
 TEST_CASE("model ns refuses what its tank cannot hold, exiting 2", "[cli]") {
-  const auto dir = fresh_dir("ns-bad");
+  const swemps::testing::TempDir scratch("cli-ns-bad");
+  const fs::path& dir = scratch.path();
   std::string scene = kTinyNsScene;
   scene.insert(scene.rfind('}'), R"(, "friction": {"manning_n": 0.01})");
   std::ofstream(dir / "scenario.json") << scene;
@@ -472,7 +473,8 @@ const char* kTinyCompareScene = R"({
 }  // namespace
 
 TEST_CASE("compare runs both models and tabulates their fronts beside Ritter's", "[cli]") {
-  const auto dir = fresh_dir("compare");
+  const swemps::testing::TempDir scratch("cli-compare");
+  const fs::path& dir = scratch.path();
   std::ofstream(dir / "scenario.json") << kTinyCompareScene;
   const auto stem = dir / "out" / "dam";
   fs::create_directories(dir / "out");
@@ -521,7 +523,8 @@ TEST_CASE("compare runs both models and tabulates their fronts beside Ritter's",
 }
 
 TEST_CASE("compare refuses a scene model ns cannot run, before running either", "[cli]") {
-  const auto dir = fresh_dir("compare-bad");
+  const swemps::testing::TempDir scratch("cli-compare-bad");
+  const fs::path& dir = scratch.path();
   std::string scene = kTinyCompareScene;
   scene.insert(scene.rfind('}'), R"(, "friction": {"manning_n": 0.01})");
   std::ofstream(dir / "scenario.json") << scene;
