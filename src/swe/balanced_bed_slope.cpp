@@ -131,14 +131,9 @@ void gather_nodes(const BedLattice& lattice, double x, double y, double h, NodeB
   }
 }
 
-// Which lattice nodes hold water this step, by node: those within sqrt(A/2) of a particle, fluid
-// or ghost, and the one nearest it (apply_with). Null: no rim search (drop_ground_beyond_rims).
-struct WaterOnNodes {
-  const std::vector<char>* occupied = nullptr;
-};
-
 // Lower ground beyond a rim: the nodes of i's support below the level that holds its depth sum
-// (level_holding), that neither hold water nor connect to a node that does through nodes below
+// (level_holding), that neither hold water (`occupied`, by lattice node: within sqrt(A/2) of a
+// particle, fluid or ghost, or nearest to it; apply_with) nor connect to a node that does through nodes below
 // that level (all eight neighbours, as a lake is filled from a point). Drops them from b and
 // returns true, with `level` (on entry: the level on all of b's nodes) the level on the nodes
 // kept; returns false and leaves b as it was when there are none.
@@ -154,14 +149,12 @@ struct WaterOnNodes {
 // top the rim): the search is repeated with the new level until the dropped set settles.
 constexpr int kRimPasses = 4;
 
-bool drop_ground_beyond_rims(const WaterOnNodes& water, std::size_t own_node, double depth,
-                             NodeBuffer& b, double& level) {
+bool drop_ground_beyond_rims(const std::vector<char>& occupied, std::size_t own_node,
+                             double depth, NodeBuffer& b, double& level) {
   const std::size_t count = b.z.size();
-  if (!water.occupied || count == 0 || b.node.size() != count || !std::isfinite(level))
-    return false;
+  if (count == 0 || b.node.size() != count || !std::isfinite(level)) return false;
   // Most partly dry supports (a shore on a hillside) have water on every node below the level:
   // nothing can be beyond a rim, and one pass tells.
-  const auto& occupied = *water.occupied;
   bool dry_below = false;
   for (std::size_t k = 0; k < count && !dry_below; ++k)
     dry_below = b.z[k] < level && !occupied[b.node[k]];
@@ -369,7 +362,7 @@ bool wet_set_slope(double depth, double grad_h_x, double grad_h_y, NodeBuffer& b
 // J = sum_wet grad w_k (o_k - o_mean)^T (o_mean: the wet weights' centroid, through d eta_i/d s).
 // A step that raises the residual (it crossed a change of the wet set) is halved.
 std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, double grad_h_y,
-                                    const WaterOnNodes& water, std::size_t own_node,
+                                    const std::vector<char>& occupied, std::size_t own_node,
                                     NodeBuffer& b) {
   // Every node wet: the plane of grad h_i and the bed's slope through the kernel. When it wets
   // them all it is the root; when it does not, it is still the plane a support too thinly wet to
@@ -387,7 +380,7 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
   double level = std::numeric_limits<double>::quiet_NaN();
   if (!solved) {
     level = level_holding(b.z, b.w, depth);
-    if (drop_ground_beyond_rims(water, own_node, depth, b, level)) {
+    if (drop_ground_beyond_rims(occupied, own_node, depth, b, level)) {
       interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian,
                                   all_wet, &b.wetted_by_all_wet_plane);
       exact = interior == WetSetFit::exact;
@@ -539,7 +532,6 @@ void apply_with(const BedSource& bed, const BedLattice& lattice, std::vector<cha
         p.x[i], p.y[i], std::sqrt(0.5 * p.area[i]),
         [&](double, double, double, double, LatticeNode node) { occupied[node.index] = 1; });
   }
-  const WaterOnNodes water{&occupied};
 #pragma omp parallel if (n > static_cast <std::size_t>(parallel_threshold))
   {
     NodeBuffer nodes;
@@ -563,7 +555,7 @@ void apply_with(const BedSource& bed, const BedLattice& lattice, std::vector<cha
         py += pressure * dy;
       }
       gather_nodes<K>(lattice, p.x[i], p.y[i], hi, nodes);
-      const auto [sx, sy] = surface_slope(p.depth[i], hi, grad_h_x, grad_h_y, water,
+      const auto [sx, sy] = surface_slope(p.depth[i], hi, grad_h_x, grad_h_y, occupied,
                                           lattice.nearest_node(p.x[i], p.y[i]), nodes);
       c.accel_x[i] += -g * sx + g * px;
       c.accel_y[i] += -g * sy + g * py;

@@ -96,6 +96,12 @@ std::string build_error(const TempDir& dir, const json& scene, std::string* path
   return {};
 }
 
+// A shipped case (cases/NAME/scenario.json), built.
+swemps::scenario::BuiltScene build_shipped_case(const std::string& name) {
+  return swemps::scenario::build(
+      swemps::scenario::load(fs::path(SWEMPS_SOURCE_DIR) / "cases" / name / "scenario.json"));
+}
+
 double max_speed(const swemps::particles::SweParticles& p) {
   double fastest = 0.0;
   for (std::size_t i = 0; i < p.fluid_count(); ++i) {
@@ -512,9 +518,7 @@ TEST_CASE("the valley-lakes case: two lakes over the DEM stay still for the hour
   // ground beyond a finger's rim, shifting at round-off speeds, and splitting and merging
   // against the lattice cell's area; measured before they were dealt with, 5e-4 m/s within a
   // second and metres per second within minutes.
-  const fs::path file = fs::path(SWEMPS_SOURCE_DIR) / "cases" / "valley-lakes" / "scenario.json";
-  const auto scene = swemps::scenario::load(file);
-  auto built = swemps::scenario::build(scene);
+  auto built = build_shipped_case("valley-lakes");
   auto& sim = built.simulation;
   sim.refresh();
   const std::size_t seeded = sim.particles().fluid_count();
