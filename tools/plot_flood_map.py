@@ -2,7 +2,9 @@
 """Flood maps and volume balance of a swe-mps netCDF file.
 
 Map mode draws one gridded field (max_depth unless --field says otherwise) over a
-hillshade of the terrain. The terrain is the file's bed_elevation, or a GeoTIFF given with
+hillshade of the terrain. Fields with one map per depth threshold (arrival_time,
+inundation_duration) take --threshold; the hazard classes (hazard_class_uk,
+hazard_class_aidr) are drawn as classes with a legend. The terrain is the file's bed_elevation, or a GeoTIFF given with
 --dem (read through Pillow, which matplotlib already needs). Cells are coloured only where
 the water exceeded the run's wet threshold, so dry land shows as relief. Axes are in km of
 the file's coordinates (in m for domains under 1 km, such as flumes), and the title names
@@ -12,7 +14,9 @@ Balance mode (--balance) plots the volume in the domain and the cumulative inflo
 outflow against time, and the relative volume error on a log axis below.
 
     /usr/bin/python3 tools/plot_flood_map.py run.nc --out max_depth.png
-    /usr/bin/python3 tools/plot_flood_map.py run.nc --field arrival_time --out arrival.png
+    /usr/bin/python3 tools/plot_flood_map.py run.nc --field arrival_time --threshold 0.3 \
+        --out arrival.png
+    /usr/bin/python3 tools/plot_flood_map.py run.nc --field hazard_class_aidr --out h.png
     /usr/bin/python3 tools/plot_flood_map.py run.nc --field depth --time 600 --out d600.png
     /usr/bin/python3 tools/plot_flood_map.py run.nc --dem dem.tif --out max_depth.png
     /usr/bin/python3 tools/plot_flood_map.py run.nc --balance balance.png
@@ -24,6 +28,7 @@ import sys
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.patches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import netCDF4  # noqa: E402
 import numpy as np  # noqa: E402
@@ -33,8 +38,12 @@ COLORMAPS = {
     "depth": "Blues",
     "max_depth": "Blues",
     "max_speed": "inferno_r",
-    "max_hazard": "magma_r",
+    "max_depth_speed": "magma_r",
+    "max_depth_speed2": "magma_r",
+    "max_hazard_rating": "magma_r",
+    "max_surface_elevation": "Blues",
     "arrival_time": "viridis_r",  # early arrival stands out
+    "time_of_max_depth": "viridis_r",
     "inundation_duration": "viridis",
     "u": "RdBu_r",
     "v": "RdBu_r",
@@ -128,14 +137,24 @@ def grid_extent(x, y):
     return (x[0] - dx / 2, x[-1] + dx / 2, y[0] - dy / 2, y[-1] + dy / 2), dx, dy
 
 
-def read_field(ds, name, time):
-    """The field as a masked (y, x) array, and a label for the time it shows (or None)."""
+def read_field(ds, name, time, threshold=None):
+    """The field as a masked (y, x) array, and a label for the time or threshold it shows."""
     if name not in ds.variables:
         gridded = [v for v in ds.variables if ds[v].dimensions[-2:] == ("y", "x")]
         sys.exit(f"no variable '{name}' in the file; gridded ones: {', '.join(gridded)}")
     var = ds[name]
     if var.dimensions == ("y", "x"):
         return var[:, :], None
+    if var.dimensions == ("depth_threshold", "y", "x"):
+        thresholds = ds["depth_threshold"][:]
+        if threshold is None:
+            k = 0  # the wet depth
+        else:
+            k = int(np.argmin(np.abs(thresholds - threshold)))
+            if abs(float(thresholds[k]) - threshold) > 1e-9:
+                listed = ", ".join(f"{float(t):g}" for t in thresholds)
+                sys.exit(f"'{name}' has no map for {threshold:g} m; its thresholds: {listed} m")
+        return var[k, :, :], f"depth > {float(thresholds[k]):g} m"
     if var.dimensions != ("time", "y", "x"):
         sys.exit(f"'{name}' is not a map (its dimensions are {var.dimensions})")
     times = ds["time"][:]
@@ -165,8 +184,12 @@ def plot_map(args):
     with netCDF4.Dataset(args.file) as ds:
         x, y = ds["x"][:], ds["y"][:]
         extent, dx, dy = grid_extent(x, y)
-        field, when = read_field(ds, args.field, args.time)
+        field, when = read_field(ds, args.field, args.time, args.threshold)
         field = np.ma.masked_where(wet_mask(ds, args.field, field, args.time), field)
+        classes = None
+        if "flag_meanings" in ds[args.field].ncattrs():
+            classes = (list(ds[args.field].flag_values), ds[args.field].flag_meanings.split())
+            field = np.ma.masked_where(np.ma.filled(field, 0) == 0, field)  # not flooded
         # NaN under the mask: matplotlib would otherwise scale the hidden fill values too.
         field = np.ma.masked_invalid(np.ma.filled(field.astype(float), np.nan))
         var = ds[args.field]
@@ -203,9 +226,22 @@ def plot_map(args):
     if cmap == "RdBu_r" and field.count() > 0:
         limit = float(np.abs(field).max()) or 1.0
         norm = matplotlib.colors.Normalize(-limit, limit)
-    image = ax.imshow(field, cmap=cmap, norm=norm, origin="lower", alpha=args.alpha,
-                      extent=[e * scale for e in extent], interpolation="nearest")
-    fig.colorbar(image, ax=ax, shrink=0.8, label=label)
+    if classes is not None:
+        # One colour a class, light to dark as the hazard rises; never-flooded cells show relief.
+        values, names = [v for v in classes[0] if v > 0], classes[1][1:]
+        colours = plt.get_cmap("YlOrRd")(np.linspace(0.1, 0.95, len(values)))
+        cmap = matplotlib.colors.ListedColormap(colours)
+        norm = matplotlib.colors.BoundaryNorm(np.arange(len(values) + 1) + 0.5, len(values))
+        ax.imshow(field, cmap=cmap, norm=norm, origin="lower", alpha=args.alpha,
+                  extent=[e * scale for e in extent], interpolation="nearest")
+        handles = [matplotlib.patches.Patch(color=c, label=n.replace("_", " "))
+                   for c, n in zip(colours, names)]
+        title = label.rsplit(" (", 1)[0]  # classes have no unit
+        ax.legend(handles=handles, loc="lower right", fontsize=8, title=title, title_fontsize=8)
+    else:
+        image = ax.imshow(field, cmap=cmap, norm=norm, origin="lower", alpha=args.alpha,
+                          extent=[e * scale for e in extent], interpolation="nearest")
+        fig.colorbar(image, ax=ax, shrink=0.8, label=label)
 
     if gauges is not None:
         names, gx, gy = gauges
@@ -281,6 +317,9 @@ def main():
                     help="gridded variable to draw (default max_depth)")
     ap.add_argument("--time", type=float,
                     help="for a per-time field, the output time in s (default: the last)")
+    ap.add_argument("--threshold", type=float,
+                    help="for a field per depth threshold (arrival_time, inundation_duration), "
+                         "the threshold in m (default: the wet depth)")
     ap.add_argument("--dem", help="GeoTIFF of the terrain for the hillshade "
                                   "(default: the file's bed_elevation)")
     ap.add_argument("--out", help="PNG of the map (default flood_map.png without --balance)")

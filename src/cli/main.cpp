@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "swemps/cli/log_file.hpp"
 #include "swemps/cli/options.hpp"
 #include "swemps/cli/run_command.hpp"
 #include "swemps/io/checkpoint.hpp"
@@ -23,10 +24,14 @@ namespace {
 void set_up_logging(swemps::cli::Verbosity verbosity) {
   auto logger = spdlog::stderr_color_mt("swe-mps");
   logger->set_pattern("%^[%l]%$ %v");
+  // The terminal shows what the verbosity asks for; the logger passes everything on, for the
+  // log file a run keeps beside its output (swemps::cli::keep_log_beside).
+  logger->set_level(spdlog::level::debug);
+  const auto& terminal = logger->sinks().front();
   switch (verbosity) {
-    case swemps::cli::Verbosity::quiet: logger->set_level(spdlog::level::warn); break;
-    case swemps::cli::Verbosity::normal: logger->set_level(spdlog::level::info); break;
-    case swemps::cli::Verbosity::verbose: logger->set_level(spdlog::level::debug); break;
+    case swemps::cli::Verbosity::quiet: terminal->set_level(spdlog::level::warn); break;
+    case swemps::cli::Verbosity::normal: terminal->set_level(spdlog::level::info); break;
+    case swemps::cli::Verbosity::verbose: terminal->set_level(spdlog::level::debug); break;
   }
   spdlog::set_default_logger(logger);
   // What GDAL reports outside the readers' own checks (the readers fold its errors into
@@ -43,7 +48,9 @@ void set_up_logging(swemps::cli::Verbosity verbosity) {
 
 // One line: a file name or key with a line break in it cannot split the message.
 int fail(int status, const std::string& message) {
-  std::fprintf(stderr, "swe-mps: %s\n", swemps::scenario::printable_line(message).c_str());
+  const std::string line = swemps::scenario::printable_line(message);
+  std::fprintf(stderr, "swe-mps: %s\n", line.c_str());
+  swemps::cli::log_failure(line + " (exit status " + std::to_string(status) + ")");
   return status;
 }
 

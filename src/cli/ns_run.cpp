@@ -204,12 +204,15 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
       }
       const std::size_t c = static_cast<std::size_t>(k) * grid.nx + static_cast<std::size_t>(i);
       const bool is_wet = f.depth[c] > wet;
-      at_gauges.push_back({f.depth[c], is_wet ? f.u[c] : kNaN, is_wet ? f.v[c] : kNaN});
+      at_gauges.push_back(
+          {f.depth[c], is_wet ? f.u[c] : kNaN, is_wet ? f.v[c] : kNaN,
+           is_wet ? f.depth[c] + file.bed_at(g.position_m[0], g.position_m[1]) : kNaN});
     }
     const double volume = static_cast<double>(p.fluid) * particle_volume;
     const double lost = static_cast<double>(sim.totals().lost_particles) * particle_volume;
-    file.sample(sim.time(), state, at_gauges,
-                {volume, 0.0, lost, (volume - (initial_volume - lost)) / initial_volume});
+    file.update_statistics(sim.time(), state);
+    file.sample_series(sim.time(), at_gauges,
+                       {volume, 0.0, lost, (volume - (initial_volume - lost)) / initial_volume});
 
     const double front = ns::front_position<Dim>(p, l0);
     const bool stepped = sim.steps() > 0;

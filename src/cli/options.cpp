@@ -1,5 +1,6 @@
 #include "swemps/cli/options.hpp"
 
+#include <algorithm>
 #include <charconv>
 
 namespace swemps::cli {
@@ -11,6 +12,8 @@ Usage:
   swe-mps run SCENARIO.json [options]
   swe-mps compare SCENARIO.json [options]
   swe-mps study STUDY.json [options]
+  swe-mps check SCENARIO.json [options]
+  swe-mps export RESULT.nc [--maps LIST] [--format cog|geotiff] [-o PREFIX]
   swe-mps --help | --version
 
 Commands:
@@ -22,6 +25,12 @@ Commands:
             lists (spacing, splitting, scheme, gradient, kappa, dissipation, shifting,
             cfl, alpha_e), each in its own process, and tabulate each run's cost and
             its error against Ritter's solution (CSV)
+  check     everything a run checks before its first step, and a report: the domain, the
+            CRS, each raster's extent, cells, range and nodata, the particles, the memory,
+            the first time step and an estimate of the run's wall time; nothing is written
+  export    from a run's netCDF result: GeoTIFF maps of its whole-run statistics and
+            hazard classes (PREFIX_<map>.tif, PREFIX the result without .nc) and the gauge
+            series as CSV (PREFIX_gauges.csv)
 
 Options:
   -o, --output PATH   run: write the netCDF result to PATH instead of the scene's
@@ -38,6 +47,9 @@ Options:
       --restart FILE  run (shallow water): go on from checkpoint FILE, written by a run of
                       the same scenario file, writing on into the output that run left
                       (OUTPUT.partial); the result is the same as one run straight through
+      --maps LIST     export: the maps to write, comma-separated, or "all" (the default);
+                      see docs/outputs.md for the names
+      --format F      export: "cog" (Cloud-Optimised GeoTIFF, the default) or "geotiff"
   -q, --quiet         warnings and errors only, no progress
   -v, --verbose       debug messages
   -h, --help          this text
@@ -91,6 +103,21 @@ Options parse_options(const std::vector<std::string>& args) {
       options.checkpoint_every = parse_count(arg, value(arg), 1'000'000);
     } else if (arg == "--restart") {
       options.restart = value(arg);
+    } else if (arg == "--maps") {
+      options.maps.clear();
+      const std::string& list = value(arg);
+      std::size_t start = 0;
+      while (start <= list.size()) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        if (comma > start) options.maps.push_back(list.substr(start, comma - start));
+        start = comma + 1;
+      }
+      if (options.maps.empty()) throw UsageError("--maps expects a list of map names");
+    } else if (arg == "--format") {
+      options.format = value(arg);
+      if (options.format != "cog" && options.format != "geotiff") {
+        throw UsageError("--format expects 'cog' or 'geotiff', found '" + options.format + "'");
+      }
     } else if (arg == "-q" || arg == "--quiet") {
       options.verbosity = Verbosity::quiet;
     } else if (arg == "-v" || arg == "--verbose") {
@@ -98,8 +125,9 @@ Options parse_options(const std::vector<std::string>& args) {
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError("unknown option '" + arg + "' (see swe-mps --help)");
     } else if (options.command.empty()) {
-      if (arg != "run" && arg != "compare" && arg != "study") {
-        throw UsageError("unknown command '" + arg + "' (the commands are: run, compare, study)");
+      if (arg != "run" && arg != "compare" && arg != "study" && arg != "check" && arg != "export") {
+        throw UsageError("unknown command '" + arg +
+                         "' (the commands are: run, compare, study, check, export)");
       }
       options.command = arg;
     } else if (options.scenario.empty()) {
@@ -112,9 +140,14 @@ Options parse_options(const std::vector<std::string>& args) {
   if (options.command != "run" && (options.restart || options.checkpoint_every > 0)) {
     throw UsageError("--restart and --checkpoint-every apply to 'run' only");
   }
+  if (options.command != "export" && (!options.maps.empty() || !options.format.empty())) {
+    throw UsageError("--maps and --format apply to 'export' only");
+  }
   if (options.scenario.empty()) {
     throw UsageError("'" + options.command + "' expects a " +
-                     (options.command == "study" ? "study" : "scenario") + " file");
+                     (options.command == "study"    ? "study file"
+                      : options.command == "export" ? "netCDF result of a run"
+                                                    : "scenario file"));
   }
   return options;
 }

@@ -1,15 +1,19 @@
 #include "swemps/cli/output.hpp"
 
 #include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
 
 #include <cctype>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <system_error>
 
 #include "swemps/io/checkpoint.hpp"
+#include "swemps/io/flood_products.hpp"
 
 namespace swemps::cli {
 
@@ -18,6 +22,29 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 constexpr const char* kOutputStateLabel = "swe-mps map output";
+
+// Now, in UTC, as ISO 8601 to the second.
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+// The bed elevation at the grid's cell centres; 0 without a bed.
+std::vector<double> grid_bed(const scenario::Terrain& terrain, const swe::RegularGrid& grid) {
+  std::vector<double> bed(grid.nx * grid.ny, 0.0);
+  if (!terrain.bed) return bed;
+  for (std::size_t k = 0; k < grid.ny; ++k) {
+    for (std::size_t i = 0; i < grid.nx; ++i) {
+      bed[k * grid.nx + i] = terrain.bed->elevation(grid.x0 + static_cast<double>(i) * grid.dx,
+                                                    grid.y0 + static_cast<double>(k) * grid.dy);
+    }
+  }
+  return bed;
+}
 
 }  // namespace
 
@@ -44,12 +71,30 @@ MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& t
                      const std::string& depth_long_name, const std::string& title_note,
                      const std::optional<io::WriterPosition>& resume)
     : wet_depth_m_(scene.output.wet_depth_m),
-      bed_m_(grid.nx * grid.ny, 0.0),
-      statistics_(grid.nx * grid.ny, scene.output.wet_depth_m) {
-  io::RunMetadata meta{
-      scene.name,
-      std::string("swe-mps ") + SWEMPS_VERSION + ", scenario " + context.scenario_file.string(),
-      context.command_line, scene.numerics.gravity_m_s2};
+      rasters_(scene.output.rasters),
+      raster_cog_(scene.output.raster_cog),
+      bed_(terrain.bed),
+      bed_m_(grid_bed(terrain, grid)),
+      statistics_(
+          grid.nx * grid.ny,
+          {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use},
+          bed_m_) {
+  const std::string started = utc_now();
+  io::RunMetadata meta;
+  meta.title = scene.name;
+  meta.scenario_file =
+      std::string("swe-mps ") + SWEMPS_VERSION + ", scenario " + context.scenario_file.string();
+  // CF's history: when, and the command.
+  meta.history = started + " " + context.command_line;
+  meta.gravity_m_s2 = scene.numerics.gravity_m_s2;
+  meta.program = std::string("swe-mps ") + SWEMPS_VERSION;
+  meta.scene_json = scene.as_read_json;
+  meta.command_line = context.command_line;
+  meta.run_started = started;
+  if (scene.output.start_time) {
+    meta.start_time = *scene.output.start_time;
+    meta.time_units = *scene.output.start_time_units;
+  }
   if (!scene.description.empty()) meta.title += ": " + scene.description;
   if (!title_note.empty()) meta.title += " (" + title_note + ")";
   io::Layout layout{
@@ -57,14 +102,6 @@ MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& t
   if (!depth_long_name.empty()) layout.depth_long_name = depth_long_name;
   for (const auto& g : scene.output.gauges) {
     layout.gauges.push_back({g.name, g.position_m[0], g.position_m[1]});
-  }
-  if (terrain.bed) {
-    for (std::size_t k = 0; k < grid.ny; ++k) {
-      for (std::size_t i = 0; i < grid.nx; ++i) {
-        bed_m_[k * grid.nx + i] = terrain.bed->elevation(
-            grid.x0 + static_cast<double>(i) * grid.dx, grid.y0 + static_cast<double>(k) * grid.dy);
-      }
-    }
   }
   if (resume) {
     try {
@@ -100,10 +137,17 @@ void MapOutput::write_maps(double time_s, const GriddedState& state,
   });
 }
 
-void MapOutput::sample(double time_s, const GriddedState& state,
-                       std::span<const io::GaugeSample> gauges, const io::BalanceSample& balance) {
+void MapOutput::update_statistics(double time_s, const GriddedState& state) {
   statistics_.update(time_s, state.depth, state.u, state.v);
+}
+
+void MapOutput::sample_series(double time_s, std::span<const io::GaugeSample> gauges,
+                              const io::BalanceSample& balance) {
   writing([&] { writer_->write_series(time_s, gauges, balance); });
+}
+
+double MapOutput::bed_at(double x_m, double y_m) const {
+  return bed_ ? bed_->elevation(x_m, y_m) : 0.0;
 }
 
 void MapOutput::finish() {
@@ -111,6 +155,20 @@ void MapOutput::finish() {
     writer_->write_summary(statistics_);
     writer_->write_status("complete", "");
     writer_->finish();
+  });
+  // The products are made from the finished file, as `swe-mps export` makes them.
+  std::filesystem::path prefix = writer_->path();
+  prefix.replace_extension();
+  writing([&] {
+    if (!rasters_.empty()) {
+      const auto layout = raster_cog_ ? io::TiffLayout::cloud_optimised : io::TiffLayout::plain;
+      for (const auto& file : io::export_maps(writer_->path(), rasters_, layout, prefix)) {
+        spdlog::info("wrote {}", file.string());
+      }
+    }
+    std::filesystem::path csv = prefix;
+    csv += "_gauges.csv";
+    if (io::export_gauges(writer_->path(), csv)) spdlog::info("wrote {}", csv.string());
   });
 }
 
@@ -151,7 +209,7 @@ void MapOutput::restore_statistics(swe::StateReader& in) {
   const std::size_t samples = in.count();
   const double last_time_s = in.number();
   std::vector<std::vector<double>> maps;
-  for (int k = 0; k < 5; ++k) maps.push_back(in.numbers());
+  for (std::size_t k = 0; k < statistics_.maps().size(); ++k) maps.push_back(in.numbers());
   try {
     statistics_.restore(samples, last_time_s, std::move(maps));
   } catch (const std::invalid_argument& e) {

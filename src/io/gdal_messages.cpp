@@ -1,6 +1,7 @@
 #include "swemps/io/gdal_messages.hpp"
 
 #include <cpl_error.h>
+#include <gdal.h>
 
 #include <mutex>
 #include <utility>
@@ -34,5 +35,15 @@ QuietGdalErrors::QuietGdalErrors() {
 }
 
 QuietGdalErrors::~QuietGdalErrors() { CPLPopErrorHandler(); }
+
+void register_gdal_drivers() {
+  static std::once_flag once;
+  std::call_once(once, [] { GDALAllRegister(); });
+}
+
+std::string gdal_detail() {
+  const char* message = CPLGetLastErrorMsg();
+  return message && *message ? std::string(" (GDAL: ") + message + ")" : std::string();
+}
 
 }  // namespace swemps::io

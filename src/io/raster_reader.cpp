@@ -14,7 +14,6 @@
 #include <fstream>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -28,16 +27,6 @@ namespace swemps::io {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-void register_drivers() {
-  static std::once_flag once;
-  std::call_once(once, [] { GDALAllRegister(); });
-}
-
-std::string gdal_detail() {
-  const char* message = CPLGetLastErrorMsg();
-  return message && *message ? std::string(" (GDAL: ") + message + ")" : std::string();
-}
 
 // GDAL's utilities take their options as a command line; this owns one.
 class ArgumentList {
@@ -255,7 +244,7 @@ std::string utm_crs_for(double longitude_deg, double latitude_deg) {
 }
 
 terrain::GriddedField read_raster(const RasterRequest& request) {
-  register_drivers();
+  register_gdal_drivers();
   const QuietGdalErrors quiet;
   const RasterError fail(request);
 
@@ -341,7 +330,7 @@ terrain::GriddedField read_raster(const RasterRequest& request) {
 }
 
 void write_geotiff(const terrain::GriddedField& field, const std::filesystem::path& path) {
-  register_drivers();
+  register_gdal_drivers();
   const QuietGdalErrors quiet;
   auto fail = [&](const std::string& problem) {
     throw std::runtime_error("GeoTIFF '" + path.string() + "': " + problem + gdal_detail());

@@ -20,31 +20,65 @@ void require_cells(std::span<const double> field, std::size_t cells, const char*
   }
 }
 
+std::vector<double> sorted_thresholds(const StatisticsSettings& s) {
+  if (!std::isfinite(s.wet_depth_m) || s.wet_depth_m < 0.0) {
+    throw std::invalid_argument("FloodStatistics: wet depth must be a finite value >= 0 m, got " +
+                                std::to_string(s.wet_depth_m));
+  }
+  std::vector<double> further = s.depth_thresholds_m;
+  for (const double t : further) {
+    if (!std::isfinite(t) || !(t > s.wet_depth_m)) {
+      throw std::invalid_argument("FloodStatistics: a depth threshold of " + std::to_string(t) +
+                                  " m is not above the wet depth (" +
+                                  std::to_string(s.wet_depth_m) + " m)");
+    }
+  }
+  std::sort(further.begin(), further.end());
+  further.erase(std::unique(further.begin(), further.end()), further.end());
+  further.insert(further.begin(), s.wet_depth_m);
+  return further;
+}
+
 }  // namespace
 
-FloodStatistics::FloodStatistics(std::size_t cells, double wet_depth_m)
-    : wet_depth_m_(wet_depth_m),
-      last_time_s_(kNaN),
-      max_depth_(cells, kNaN),
-      max_speed_(cells, kNaN),
-      max_hazard_(cells, kNaN),
-      arrival_time_(cells, kNaN),
-      inundation_duration_(cells, kNaN) {
-  if (!std::isfinite(wet_depth_m) || wet_depth_m < 0.0) {
-    throw std::invalid_argument("FloodStatistics: wet depth must be a finite value >= 0 m, got " +
-                                std::to_string(wet_depth_m));
+FloodStatistics::FloodStatistics(std::size_t cells, StatisticsSettings settings,
+                                 std::vector<double> bed_m)
+    : thresholds_m_(sorted_thresholds(settings)),
+      land_use_(settings.land_use),
+      bed_m_(std::move(bed_m)),
+      last_time_s_(kNaN) {
+  if (!bed_m_.empty() && bed_m_.size() != cells) {
+    throw std::invalid_argument("FloodStatistics: a bed of " + std::to_string(bed_m_.size()) +
+                                " cells for " + std::to_string(cells) + " cells");
   }
+  arrival_.resize(thresholds_m_.size());
+  duration_.resize(thresholds_m_.size());
+  for (auto* map : all_maps()) map->assign(cells, kNaN);
+}
+
+std::vector<std::vector<double>*> FloodStatistics::all_maps() {
+  std::vector<std::vector<double>*> out{
+      &max_depth_,       &time_of_max_depth_, &max_surface_,       &max_speed_,
+      &max_depth_speed_, &max_depth_speed2_,  &max_hazard_rating_, &max_hazard_class_};
+  for (std::size_t j = 0; j < thresholds_m_.size(); ++j) {
+    out.push_back(&arrival_[j]);
+    out.push_back(&duration_[j]);
+  }
+  return out;
 }
 
 std::vector<std::span<const double>> FloodStatistics::maps() const {
-  return {max_depth_, max_speed_, max_hazard_, arrival_time_, inundation_duration_};
+  std::vector<std::span<const double>> out;
+  for (const auto* map : const_cast<FloodStatistics*>(this)->all_maps()) out.emplace_back(*map);
+  return out;
 }
 
 void FloodStatistics::restore(std::size_t samples, double last_time_s,
                               std::vector<std::vector<double>> maps) {
-  if (maps.size() != 5) {
+  auto targets = all_maps();
+  if (maps.size() != targets.size()) {
     throw std::invalid_argument("FloodStatistics::restore: " + std::to_string(maps.size()) +
-                                " maps, expected 5");
+                                " maps, expected " + std::to_string(targets.size()));
   }
   for (const auto& m : maps) {
     if (m.size() != cells()) {
@@ -54,11 +88,7 @@ void FloodStatistics::restore(std::size_t samples, double last_time_s,
   }
   samples_ = samples;
   last_time_s_ = last_time_s;
-  max_depth_ = std::move(maps[0]);
-  max_speed_ = std::move(maps[1]);
-  max_hazard_ = std::move(maps[2]);
-  arrival_time_ = std::move(maps[3]);
-  inundation_duration_ = std::move(maps[4]);
+  for (std::size_t k = 0; k < targets.size(); ++k) *targets[k] = std::move(maps[k]);
 }
 
 void FloodStatistics::update(double time_s, std::span<const double> depth,
@@ -74,28 +104,42 @@ void FloodStatistics::update(double time_s, std::span<const double> depth,
   }
   // Zero before the first sample: the first sample has no interval to be wet over.
   const double interval_s = samples_ > 0 ? time_s - last_time_s_ : 0.0;
+  const double wet_depth_m = thresholds_m_.front();
+  const std::size_t thresholds = thresholds_m_.size();
 
   for (std::size_t i = 0; i < n; ++i) {
     const double h = depth[i];
     if (std::isnan(h)) continue;
-    if (std::isnan(max_depth_[i])) {
-      // First data for this cell: from here on "never" means 0, not "unknown".
-      max_depth_[i] = h;
+    const bool first_data = std::isnan(max_depth_[i]);
+    if (first_data) {
+      // From here on "never" means 0, not "unknown".
       max_speed_[i] = 0.0;
-      max_hazard_[i] = 0.0;
-      inundation_duration_[i] = 0.0;
-    } else {
-      max_depth_[i] = std::max(max_depth_[i], h);
+      max_depth_speed_[i] = 0.0;
+      max_depth_speed2_[i] = 0.0;
+      max_hazard_rating_[i] = 0.0;
+      max_hazard_class_[i] = 0.0;
+      for (std::size_t j = 0; j < thresholds; ++j) duration_[j][i] = 0.0;
     }
-    if (!(h > wet_depth_m_)) continue;
+    const bool deeper = first_data || h > max_depth_[i];
+    if (deeper) max_depth_[i] = h;
+    if (!(h > wet_depth_m)) continue;
 
-    if (std::isnan(arrival_time_[i])) arrival_time_[i] = time_s;
-    inundation_duration_[i] += interval_s;
-    const double speed = std::hypot(u[i], v[i]);
-    if (std::isfinite(speed)) {
-      max_speed_[i] = std::max(max_speed_[i], speed);
-      max_hazard_[i] = std::max(max_hazard_[i], h * speed);
+    // The first sample reaching the largest depth, among wet ones (see the header).
+    if (deeper) time_of_max_depth_[i] = time_s;
+    const double surface_m = h + (bed_m_.empty() ? 0.0 : bed_m_[i]);
+    if (!(max_surface_[i] >= surface_m)) max_surface_[i] = surface_m;  // NaN at first
+    for (std::size_t j = 0; j < thresholds && h > thresholds_m_[j]; ++j) {
+      if (std::isnan(arrival_[j][i])) arrival_[j][i] = time_s;
+      duration_[j][i] += interval_s;
     }
+    const double speed = std::hypot(u[i], v[i]);
+    if (!std::isfinite(speed)) continue;
+    max_speed_[i] = std::max(max_speed_[i], speed);
+    max_depth_speed_[i] = std::max(max_depth_speed_[i], h * speed);
+    max_depth_speed2_[i] = std::max(max_depth_speed2_[i], h * speed * speed);
+    max_hazard_rating_[i] = std::max(max_hazard_rating_[i], uk_hazard_rating(h, speed, land_use_));
+    max_hazard_class_[i] =
+        std::max(max_hazard_class_[i], static_cast<double>(aidr_hazard(h, speed)));
   }
   last_time_s_ = time_s;
   ++samples_;

@@ -143,11 +143,45 @@ double finite_number(const json& v, const std::string& path, const std::string& 
 }
 
 // o[key] as a finite number; a missing key gives `fallback`, or an error when there is none.
+namespace {
+thread_local DefaultsRecord* current_record = nullptr;
+}  // namespace
+
+DefaultsRecord::DefaultsRecord(const json& document) : document_(document), outer_(current_record) {
+  current_record = this;
+}
+
+DefaultsRecord::~DefaultsRecord() { current_record = outer_; }
+
+void DefaultsRecord::note(const std::string& path, const json& value) {
+  if (current_record == nullptr) return;
+  try {
+    json& at = current_record->document_[json::json_pointer(path)];
+    if (at.is_null()) at = value;
+  } catch (const json::exception&) {
+    // A path through a value that is not an object (a bed given as a file name, say).
+  }
+}
+
+void DefaultsRecord::drop(const std::string& path) {
+  if (current_record == nullptr) return;
+  try {
+    const json::json_pointer pointer(path);
+    json& parent = current_record->document_[pointer.parent_pointer()];
+    if (parent.is_object()) parent.erase(pointer.back());
+  } catch (const json::exception&) {
+    // Nothing was recorded there.
+  }
+}
+
 double number(const Object& o, std::string_view key, const std::string& expected,
               std::optional<double> fallback) {
   const json* v = o.find(key);
   if (v == nullptr) {
-    if (fallback) return *fallback;
+    if (fallback) {
+      DefaultsRecord::note(o.path(key), *fallback);
+      return *fallback;
+    }
     throw ScenarioError(o.path(key), kMissing, expected);
   }
   return finite_number(*v, o.path(key), expected);
@@ -203,13 +237,19 @@ std::string_view word(const json& v, const std::string& path, const Names& choic
 std::string_view choice(const Object& o, std::string_view key, const Names& choices,
                         std::string_view fallback) {
   const json* v = o.find(key);
-  if (v == nullptr) return fallback;
+  if (v == nullptr) {
+    DefaultsRecord::note(o.path(key), std::string(fallback));
+    return fallback;
+  }
   return word(*v, o.path(key), choices);
 }
 
 bool optional_bool(const Object& o, std::string_view key, bool fallback) {
   const json* v = o.find(key);
-  if (v == nullptr) return fallback;
+  if (v == nullptr) {
+    DefaultsRecord::note(o.path(key), fallback);
+    return fallback;
+  }
   if (!v->is_boolean()) throw ScenarioError(o.path(key), describe(*v), "true or false");
   return v->get<bool>();
 }

@@ -71,6 +71,28 @@ class Object {
   Names keys_;
 };
 
+// The scene as it is run: a copy of the document into which every default a reading falls
+// back on is written at its path, as the reading takes it. While one is alive, the readers
+// below record into it (one per thread; none: nothing is recorded). A default at a path the
+// document cannot hold (under a value that is not an object) is left out.
+class DefaultsRecord {
+ public:
+  explicit DefaultsRecord(const json& document);
+  ~DefaultsRecord();
+  DefaultsRecord(const DefaultsRecord&) = delete;
+  DefaultsRecord& operator=(const DefaultsRecord&) = delete;
+  const json& document() const { return document_; }
+  // Records `value` at the JSON pointer `path` in the current record, if there is one.
+  static void note(const std::string& path, const json& value);
+  // Takes back what was recorded at `path`: a default of a key that the rest of the scene
+  // rules out (a knob of the scheme not chosen), which read again would be refused.
+  static void drop(const std::string& path);
+
+ private:
+  json document_;
+  DefaultsRecord* outer_;
+};
+
 // {}, for optional sections that are absent: read as all defaults.
 const json& empty_object();
 

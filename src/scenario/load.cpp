@@ -90,8 +90,6 @@ using namespace json_reading;
 
 namespace {
 
-
-
 // ---------------------------------------------------------------------------------------------
 // Points and boxes
 
@@ -108,7 +106,6 @@ std::array<double, 2> pair(const json& v, const std::string& path, const std::st
 }
 
 namespace {
-
 
 // `coordinates` names the pair, "x, y" for map points, "x, z" for a bed profile.
 }  // namespace
@@ -128,7 +125,6 @@ std::vector<Point> points(const json& v, const std::string& path, std::size_t mi
 }
 
 namespace {
-
 
 // Requires o[key] > o[lower_key] = lower; used for the x_min < x_max pairs of boxes.
 void check_above(const Object& o, std::string_view key, double value, std::string_view lower_key,
@@ -166,7 +162,6 @@ Rectangle read_box(const json& v, const std::string& path) {
 }
 
 namespace {
-
 
 // ---------------------------------------------------------------------------------------------
 // Geometry checks
@@ -239,7 +234,6 @@ void check_distinct_neighbours(const std::vector<Point>& pts, const std::string&
 }
 
 namespace {
-
 
 // A simple polygon: no two edges meet except neighbours at their shared vertex.
 void check_simple(const std::vector<Point>& poly, const std::string& path) {
@@ -315,7 +309,6 @@ std::vector<Point> corners(const Rectangle& r) {
 
 namespace {
 
-
 std::string describe_box(const Rectangle& r) {
   return "[" + fmt(r.x_min) + ", " + fmt(r.x_max) + "] x [" + fmt(r.y_min) + ", " + fmt(r.y_max) +
          "]";
@@ -349,30 +342,29 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
 
 namespace {
 
-
 // ---------------------------------------------------------------------------------------------
 // Sections of the scene
 
 swe::Settings read_numerics(const json* v, double gravity, std::optional<double>& eddy_viscosity,
                             std::optional<double>& shock_viscosity) {
-  const Object o(v ? *v : empty_object(), "/numerics",
-                 {"scheme", "cfl", "alpha_e", "max_area_ratio", "gradient", "kappa", "kernel",
-                  "dissipation", "shifting", "bed_term", "min_time_step", "eddy_viscosity",
-                  "shock_viscosity"},
-                 "an object");
+  const Object o(
+      v ? *v : empty_object(), "/numerics",
+      {"scheme", "cfl", "alpha_e", "max_area_ratio", "gradient", "kappa", "kernel", "dissipation",
+       "shifting", "bed_term", "min_time_step", "eddy_viscosity", "shock_viscosity"},
+      "an object");
   swe::Settings s;
   s.gravity_m_s2 = gravity;
-  const bool seed =
-      choice(o, "scheme", {"conservative", "seed"},
-             s.scheme == swe::SchemeKind::seed ? "seed" : "conservative") == "seed";
+  const bool seed = choice(o, "scheme", {"conservative", "seed"},
+                           s.scheme == swe::SchemeKind::seed ? "seed" : "conservative") == "seed";
   s.scheme = seed ? swe::SchemeKind::seed : swe::SchemeKind::conservative;
   // Each scheme's own knobs are refused under the other, where they would be silently ignored.
   const auto only_under = [&](std::string_view key, bool allowed, std::string_view scheme) {
     if (allowed || o.find(key) == nullptr) return;
-    throw ScenarioError(o.path(key), "\"" + std::string(key) + "\" under the " +
-                                         std::string(seed ? "seed" : "conservative") + " scheme",
-                        "no \"" + std::string(key) + "\" here (it sets the " +
-                            std::string(scheme) + " scheme; see \"scheme\")");
+    throw ScenarioError(o.path(key),
+                        "\"" + std::string(key) + "\" under the " +
+                            std::string(seed ? "seed" : "conservative") + " scheme",
+                        "no \"" + std::string(key) + "\" here (it sets the " + std::string(scheme) +
+                            " scheme; see \"scheme\")");
   };
   for (const auto* key : {"alpha_e", "gradient"}) only_under(key, seed, "seed");
   for (const auto* key : {"kappa", "kernel", "dissipation", "shifting", "bed_term"})
@@ -412,6 +404,12 @@ swe::Settings read_numerics(const json* v, double gravity, std::optional<double>
   s.gradient =
       gradient == "summation" ? swe::GradientVariant::summation : swe::GradientVariant::mps;
   s.min_time_step_s = positive(o, "min_time_step", kSeconds, s.min_time_step_s);
+  // The other scheme's knobs were read for their defaults; the scene as read has none of them.
+  for (const auto* key :
+       seed ? std::vector<const char*>{"kappa", "kernel", "dissipation", "shifting", "bed_term"}
+            : std::vector<const char*>{"alpha_e", "gradient"}) {
+    DefaultsRecord::drop(o.path(key));
+  }
   if (o.find("eddy_viscosity") != nullptr) {
     eddy_viscosity = positive(o, "eddy_viscosity", "m^2/s");
   }
@@ -457,7 +455,6 @@ std::filesystem::path file_path(const Object& o, std::string_view key, const std
 
 namespace {
 
-
 // o["crs"], the CRS a raster is warped to; empty when not given. Whether GDAL knows it is
 // found out when the raster is read.
 }  // namespace
@@ -481,8 +478,6 @@ std::string several(const std::vector<std::string_view>& keys) {
 }
 
 namespace {
-
-
 
 Wall read_wall(const json& v, const std::string& path) {
   const Object o(v, path, {"polyline", "condition"},
@@ -670,10 +665,10 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
   }
 }
 
-
 Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {
   const json root = parse_json(text);
+  const DefaultsRecord as_read(root);
   const Object o(root, "",
                  {"name", "description", "gravity", "end_time", "numerics", "model", "dimension",
                   "ns", "domain", "water", "walls", "bed", "friction", "splitting", "merging",
@@ -710,8 +705,8 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   const bool has_bed = !std::holds_alternative<std::monostate>(s.bed);
   // Model ns fills its tank on the "ns" lattice; a water body's own spacing is then optional.
   const double default_spacing_m = s.model == Model::ns ? s.ns->settings.spacing_m : 0.0;
-  s.water = read_waters(o.find("water"), domain, has_bed, base_dir, default_spacing_m,
-                        s.numerics.scheme);
+  s.water =
+      read_waters(o.find("water"), domain, has_bed, base_dir, default_spacing_m, s.numerics.scheme);
   default_tank_height(s);
   s.walls = read_walls(o.find("walls"));
   s.manning_n = read_friction(o.find("friction"), base_dir);
@@ -728,6 +723,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   s.output = read_output(o.find("output"), s, base_dir);
   if (domain) check_within_domain(s, *domain);
   if (s.model == Model::ns) check_ns_scene(s);
+  s.as_read_json = as_read.document().dump(2);
   return s;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -10,6 +11,7 @@
 
 #include "json_reading.hpp"
 #include "load_sections.hpp"
+#include "swemps/io/flood_products.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace swemps::scenario {
@@ -169,13 +171,127 @@ std::vector<Gauge> read_gauges(const json* v, const std::string& path) {
   return out;
 }
 
+// The default further depth thresholds: 0.1 m wets a floor, 0.3 m is where a flood starts to
+// take people off their feet and stops cars, 0.5 m and 1 m bound the hazard classes
+// (docs/outputs.md). Those not above the wet depth are left out.
+constexpr double kDefaultThresholds[] = {0.1, 0.3, 0.5, 1.0};
+
+std::vector<double> read_thresholds(const Object& o, double wet_depth_m) {
+  const json* v = o.find("depth_thresholds");
+  std::vector<double> out;
+  if (v == nullptr) {
+    for (const double t : kDefaultThresholds) {
+      if (t > wet_depth_m) out.push_back(t);
+    }
+    DefaultsRecord::note(o.path("depth_thresholds"), out);
+    return out;
+  }
+  const std::string path = o.path("depth_thresholds");
+  const std::string expected =
+      "an array of depths (metres), each above wet_depth (" + fmt(wet_depth_m) + " m)";
+  if (!v->is_array()) throw ScenarioError(path, describe(*v), expected);
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const double t = finite_number((*v)[i], element_path(path, i),
+                                   "a depth above wet_depth (" + fmt(wet_depth_m) + " m)");
+    if (!(t > wet_depth_m)) {
+      throw ScenarioError(element_path(path, i), describe((*v)[i]),
+                          "a depth above wet_depth (" + fmt(wet_depth_m) + " m)");
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+maps::LandUse read_land_use(const Object& o) {
+  const std::string_view word =
+      choice(o, "land_use", {"urban", "woodland", "pasture_arable"}, "urban");
+  if (word == "woodland") return maps::LandUse::woodland;
+  if (word == "pasture_arable") return maps::LandUse::pasture_arable;
+  return maps::LandUse::urban;
+}
+
+// Reads `digits` decimal digits at text[at], or -1.
+int digits_at(std::string_view text, std::size_t at, std::size_t digits) {
+  if (at + digits > text.size()) return -1;
+  int value = 0;
+  for (std::size_t k = 0; k < digits; ++k) {
+    const char c = text[at + k];
+    if (c < '0' || c > '9') return -1;
+    value = value * 10 + (c - '0');
+  }
+  return value;
+}
+
+// An ISO 8601 date and time, "2024-06-01", "2024-06-01T12:00", "2024-06-01T12:00:00", each
+// optionally followed by "Z" or an offset "+02:00" (a space may stand for the "T"), as the CF
+// units of a time axis. Empty when the text is none of these.
+std::string cf_time_units(std::string_view text) {
+  const int year = digits_at(text, 0, 4), month = digits_at(text, 5, 2),
+            day = digits_at(text, 8, 2);
+  if (year < 0 || month < 1 || month > 12 || day < 1 || text[4] != '-' || text[7] != '-') return {};
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  const int days[] = {31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  if (day > days[month - 1]) return {};
+  int hour = 0, minute = 0, second = 0;
+  std::size_t at = 10;
+  if (at < text.size() && (text[at] == 'T' || text[at] == ' ')) {
+    hour = digits_at(text, at + 1, 2);
+    minute = digits_at(text, at + 4, 2);
+    if (hour < 0 || hour > 23 || minute < 0 || minute > 59 || text[at + 3] != ':') return {};
+    at += 6;
+    if (at < text.size() && text[at] == ':') {
+      second = digits_at(text, at + 1, 2);
+      if (second < 0 || second > 59) return {};
+      at += 3;
+    }
+  }
+  std::string zone;
+  if (at < text.size()) {
+    const std::string_view rest = text.substr(at);
+    if (rest == "Z") {
+      zone = " +00:00";
+    } else {
+      const int zh = digits_at(rest, 1, 2), zm = digits_at(rest, 4, 2);
+      if (rest.size() != 6 || (rest[0] != '+' && rest[0] != '-') || rest[3] != ':' || zh < 0 ||
+          zh > 14 || zm < 0 || zm > 59) {
+        return {};
+      }
+      zone = " " + std::string(rest);
+    }
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "seconds since %04d-%02d-%02d %02d:%02d:%02d", year, month,
+                day, hour, minute, second);
+  return buffer + zone;
+}
+
+// "all", or a list of the maps to write as GeoTIFF.
+std::vector<std::string> read_rasters(const Object& o) {
+  const json* v = o.find("rasters");
+  if (v == nullptr) return {};
+  const auto& known = io::exportable_maps();
+  const Names choices(known.begin(), known.end());
+  const std::string path = o.path("rasters");
+  if (v->is_string() && v->get_ref<const std::string&>() == "all") return known;
+  if (!v->is_array()) {
+    throw ScenarioError(path, describe(*v), "\"all\" or an array of map names");
+  }
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const std::string name(word((*v)[i], element_path(path, i), choices));
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  }
+  return out;
+}
+
 }  // namespace
 
 Output read_output(const json* v, const Scenario& scene, const std::filesystem::path& base_dir) {
   const std::string path = "/output";
   const Object o(
       v ? *v : empty_object(), path,
-      {"path", "times", "interval", "grid", "particles", "gauges", "series_interval", "wet_depth"},
+      {"path", "times", "interval", "grid", "particles", "gauges", "series_interval", "wet_depth",
+       "depth_thresholds", "land_use", "start_time", "rasters", "raster_format"},
       "an object");
   Output out;
   out.path = read_output_path(o, scene.name, base_dir);
@@ -193,8 +309,22 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
         "an interval giving at most " + fmt(kMaxOutputTimes) + " samples (seconds)");
   }
   out.wet_depth_m = non_negative(o, "wet_depth", kMetres, out.wet_depth_m);
+  out.depth_thresholds_m = read_thresholds(o, out.wet_depth_m);
+  out.land_use = read_land_use(o);
+  const std::string date_expected =
+      "an ISO 8601 date and time of t = 0, such as \"2024-06-01T12:00:00Z\" or "
+      "\"2024-06-01T12:00:00+02:00\"";
+  if (const auto start = optional_string(o, "start_time", date_expected)) {
+    const std::string units = cf_time_units(*start);
+    if (units.empty()) {
+      throw ScenarioError(o.path("start_time"), describe(*o.find("start_time")), date_expected);
+    }
+    out.start_time = *start;
+    out.start_time_units = units;
+  }
+  out.rasters = read_rasters(o);
+  out.raster_cog = choice(o, "raster_format", {"cog", "geotiff"}, "cog") == "cog";
   return out;
 }
-
 
 }  // namespace swemps::scenario

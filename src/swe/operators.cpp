@@ -1,5 +1,7 @@
 #include "swemps/swe/operators.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -134,8 +136,8 @@ std::array<double, 2> mps_gradient_at(const SweParticles& p, const neighbors::Ne
     const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i];
     const double r2 = dx * dx + dy * dy;
     if (r2 < coincident_m * coincident_m) continue;  // no direction
-    const double f = (phi[j] - phi[i]) * (p.area[j] / p.area[i]) *
-                     w.pair_w(p, i, j, std::sqrt(r2)) / r2;
+    const double f =
+        (phi[j] - phi[i]) * (p.area[j] / p.area[i]) * w.pair_w(p, i, j, std::sqrt(r2)) / r2;
     sx += f * dx;
     sy += f * dy;
   }
@@ -276,9 +278,8 @@ class PointSampler {
   // Returns h, and (sum V u w, sum V v w) in qx, qy. The kernel shape is chosen once per
   // point, not once per particle.
   double sum(double x, double y, double& qx, double& qy) const {
-    return with_kernel_shape(w_.shape(), [&](const auto& kernel) {
-      return sum_with(kernel, x, y, qx, qy);
-    });
+    return with_kernel_shape(w_.shape(),
+                             [&](const auto& kernel) { return sum_with(kernel, x, y, qx, qy); });
   }
   PointFields at(double x, double y) const {
     double qx = 0.0, qy = 0.0;
@@ -334,18 +335,90 @@ class PointSampler {
   neighbors::CellList<2> wide_cells_;
 };
 
+// Eq 7 and the momentum of the particles at the grid's cell centres, added up particle by
+// particle: each particle adds its share to the cells within its support, with the wall
+// ghosts' rule of PointSampler. A grid's points are many and regular and a young flood's
+// particles few: visiting each particle's cells costs the particles' supports, where a search
+// around every cell costs the whole grid (1.0 ms a step against 0.4 ms on the valley flood's
+// 22,000 cells, gridded every step for the flood statistics). Bands of rows go to the
+// threads, and each cell adds its particles in index order, so the maps are the same for any
+// number of threads; they differ from PointSampler's sums at the same points in the order of
+// the additions only.
+void scatter_onto_grid(const SweParticles& p, const ParticleKernel& w, const RegularGrid& grid,
+                       std::span<double> h, std::span<double> qx, std::span<double> qy) {
+  const std::size_t n = p.size();
+  const std::size_t fluid = p.fluid_count();
+  // The cells a particle reaches, as ranges of columns and rows; empty (first > last) when
+  // none.
+  struct Reach {
+    long i0, i1, k0, k1;
+  };
+  std::vector<Reach> reach(n);
+  const auto cell_range = [](double centre, double support, double origin, double spacing,
+                             std::size_t count) {
+    const double lo = std::ceil((centre - support - origin) / spacing);
+    const double hi = std::floor((centre + support - origin) / spacing);
+    const double last = static_cast<double>(count) - 1.0;
+    return std::pair<long, long>{static_cast<long>(std::clamp(lo, 0.0, last + 1.0)),
+                                 static_cast<long>(std::clamp(hi, -1.0, last))};
+  };
+  parallel_for(n, [&](std::size_t j) {
+    const double support = ParticleKernel::support(p.smoothing_length[j]);
+    const auto [i0, i1] = cell_range(p.x[j], support, grid.x0, grid.dx, grid.nx);
+    const auto [k0, k1] = cell_range(p.y[j], support, grid.y0, grid.dy, grid.ny);
+    reach[j] = {i0, i1, k0, k1};
+  });
+  // One band a thread: every band visits every particle's reach, so more bands cost more.
+  const std::size_t bands =
+      std::min<std::size_t>(grid.ny, static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+  with_kernel_shape(w.shape(), [&](const auto& kernel) {
+    const auto band_count = static_cast<long>(bands);
+#pragma omp parallel for schedule(static)
+    for (long band = 0; band < band_count; ++band) {
+      const auto b = static_cast<std::size_t>(band);
+      const long band0 = static_cast<long>(b * grid.ny / bands);
+      const long band1 = static_cast<long>((b + 1) * grid.ny / bands) - 1;
+      for (std::size_t j = 0; j < n; ++j) {
+        const Reach& r = reach[j];
+        const long k0 = std::max(r.k0, band0), k1 = std::min(r.k1, band1);
+        if (k0 > k1 || r.i0 > r.i1) continue;
+        const double hj = p.smoothing_length[j];
+        const double support = ParticleKernel::support(hj);
+        const bool ghost = j >= fluid;
+        const std::size_t source = ghost ? p.source[j] : j;
+        for (long k = k0; k <= k1; ++k) {
+          const double y = grid.y0 + static_cast<double>(k) * grid.dy;
+          for (long i = r.i0; i <= r.i1; ++i) {
+            const double x = grid.x0 + static_cast<double>(i) * grid.dx;
+            const double dx = p.x[j] - x, dy = p.y[j] - y;
+            const double r2 = dx * dx + dy * dy;
+            if (!(r2 < support * support)) continue;
+            if (ghost) {
+              const double sx = p.x[source] - x, sy = p.y[source] - y;
+              if (!(sx * sx + sy * sy < r2)) continue;  // the point is behind the wall
+            }
+            const double vw = p.volume[j] * kernel.w(std::sqrt(r2), hj);
+            const std::size_t c =
+                static_cast<std::size_t>(k) * grid.nx + static_cast<std::size_t>(i);
+            h[c] += vw;
+            qx[c] += vw * p.u[j];
+            qy[c] += vw * p.v[j];
+          }
+        }
+      }
+    }
+  });
+}
+
 }  // namespace
 
 std::vector<double> depth_on_grid(const SweParticles& p, const ParticleKernel& w,
                                   const RegularGrid& grid) {
-  std::vector<double> depth(grid.nx * grid.ny, 0.0);
-  if (p.fluid_count() == 0) return depth;
-  const PointSampler sampler(p, w);
-  parallel_for(grid.nx * grid.ny, [&](std::size_t cell) {
-    double qx = 0.0, qy = 0.0;
-    depth[cell] = sampler.sum(grid.x0 + static_cast<double>(cell % grid.nx) * grid.dx,
-                              grid.y0 + static_cast<double>(cell / grid.nx) * grid.dy, qx, qy);
-  });
+  const std::size_t cells = grid.nx * grid.ny;
+  std::vector<double> depth(cells, 0.0);
+  if (p.fluid_count() == 0 || cells == 0) return depth;
+  std::vector<double> qx(cells, 0.0), qy(cells, 0.0);
+  scatter_onto_grid(p, w, grid, depth, qx, qy);
   return depth;
 }
 
@@ -354,21 +427,20 @@ PointFields fields_at(const SweParticles& p, const ParticleKernel& w, double x_m
   return PointSampler(p, w).at(x_m, y_m);
 }
 
-GridFields fields_on_grid(const SweParticles& p, const ParticleKernel& w,
-                          const RegularGrid& grid) {
+GridFields fields_on_grid(const SweParticles& p, const ParticleKernel& w, const RegularGrid& grid) {
   const std::size_t cells = grid.nx * grid.ny;
   GridFields fields{std::vector<double>(cells, 0.0),
                     std::vector<double>(cells, PointSampler::kNoValue),
                     std::vector<double>(cells, PointSampler::kNoValue)};
-  if (p.fluid_count() == 0) return fields;
-  const PointSampler sampler(p, w);
-  parallel_for(cells, [&](std::size_t cell) {
-    const auto f = sampler.at(grid.x0 + static_cast<double>(cell % grid.nx) * grid.dx,
-                              grid.y0 + static_cast<double>(cell / grid.nx) * grid.dy);
-    fields.depth[cell] = f.depth_m;
-    fields.u[cell] = f.u_m_s;
-    fields.v[cell] = f.v_m_s;
-  });
+  if (p.fluid_count() == 0 || cells == 0) return fields;
+  std::vector<double> qx(cells, 0.0), qy(cells, 0.0);
+  scatter_onto_grid(p, w, grid, fields.depth, qx, qy);
+  for (std::size_t c = 0; c < cells; ++c) {
+    const double h = fields.depth[c];
+    if (!(h > 0.0)) continue;
+    fields.u[c] = qx[c] / h;
+    fields.v[c] = qy[c] / h;
+  }
   return fields;
 }
 

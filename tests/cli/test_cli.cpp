@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -163,6 +164,50 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& name) {
 
 }  // namespace
 
+TEST_CASE("export writes a finished result's maps as GeoTIFF, and refuses what it cannot",
+          "[cli][export]") {
+  const swemps::testing::TempDir scratch("cli-export");
+  const fs::path& dir = scratch.path();
+  const auto out = dir / "ritter.nc";
+  REQUIRE(run(cli + " run " + ritter + " -q -o " + out.string()).status == 0);
+  // A flat scene without gauges: no bed map, no gauge table.
+  CHECK_FALSE(fs::exists(dir / "ritter_gauges.csv"));
+
+  const auto r =
+      run(cli + " export " + out.string() + " --maps max_depth,arrival_time --format geotiff -o " +
+          (dir / "maps").string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  for (const char* file :
+       {"maps_max_depth.tif", "maps_arrival_time_0.01m.tif", "maps_arrival_time_0.1m.tif",
+        "maps_arrival_time_0.3m.tif", "maps_arrival_time_0.5m.tif", "maps_arrival_time_1m.tif"}) {
+    INFO(file);
+    CHECK(fs::exists(dir / file));
+  }
+  CHECK_FALSE(fs::exists(dir / "maps_max_speed.tif"));
+  const auto tif = open_raster((dir / "maps_max_depth.tif").string());
+  REQUIRE(tif != nullptr);
+  CHECK(tif->GetRasterXSize() == 500);
+  CHECK(tif->GetRasterYSize() == 50);
+  // Plain GeoTIFF: no COG layout.
+  const char* layout = tif->GetMetadataItem("LAYOUT", "IMAGE_STRUCTURE");
+  CHECK((layout == nullptr || std::string(layout) != "COG"));
+
+  const auto all = run(cli + " export " + out.string() + " -q");
+  CHECK(all.status == 0);
+  CHECK(fs::exists(dir / "ritter_hazard_class_uk.tif"));
+  CHECK(fs::exists(dir / "ritter_max_depth_speed2.tif"));
+
+  const auto unknown = run(cli + " export " + out.string() + " --maps max_dept");
+  CHECK(unknown.status == 2);
+  CHECK_THAT(unknown.output, Catch::Contains("'max_dept' is not a map that can be exported"));
+  const auto missing = run(cli + " export " + (dir / "nope.nc").string());
+  CHECK(missing.status == 4);
+  CHECK_THAT(missing.output, Catch::Contains("nope.nc"));
+  const auto not_export = run(cli + " run " + ritter + " --maps max_depth");
+  CHECK(not_export.status == 2);
+}
+
 TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its volume balance",
           "[cli]") {
   const swemps::testing::TempDir scratch("cli-raster");
@@ -180,7 +225,9 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
     "outflow": [{"line": [[500240, 4000100], [500240, 4000200]]}],
     "output": {"path": "lake.nc", "interval": 5, "series_interval": 0.5,
                "gauges": [{"name": "centre", "x": 500200, "y": 4000150},
-                          {"name": "bank", "x": 500350, "y": 4000050}]}
+                          {"name": "bank", "x": 500350, "y": 4000050}],
+               "start_time": "2024-06-01T12:00:00Z",
+               "rasters": ["max_depth", "hazard_class_aidr"]}
   })";
   const auto out = dir / "lake.nc";
   const auto r = run(cli + " run " + (dir / "scenario.json").string() + " --threads 2");
@@ -222,9 +269,16 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
     const auto bed = read_variable(out, "bed_elevation");
     // The first cell is the south-west corner: the DEM's value at its centre.
     CHECK(bed.front() == Approx(300.0 + 0.002 * (195.0 * 195.0 + 145.0 * 145.0) + 0.05));
-    for (const char* name : {"max_speed", "max_hazard", "arrival_time", "inundation_duration"}) {
+    for (const char* name : {"max_speed", "max_depth_speed", "max_hazard_rating", "hazard_class_uk",
+                             "hazard_class_aidr"}) {
       INFO(name);
       CHECK(read_variable(out, name).size() == 40 * 30);
+    }
+    // The wet depth and the four default thresholds above it.
+    CHECK(read_variable(out, "depth_threshold") == std::vector<double>{0.01, 0.1, 0.3, 0.5, 1.0});
+    for (const char* name : {"arrival_time", "inundation_duration"}) {
+      INFO(name);
+      CHECK(read_variable(out, name).size() == 5 * 40 * 30);
     }
 
     const auto error = read_variable(out, "volume_error");
@@ -247,14 +301,129 @@ TEST_CASE("a raster scene writes flood maps on the DEM's grid and closes its vol
     CHECK(gauge_depth[1] == 0.0);  // high on the bank
   }
 
-  SECTION("xarray opens it") {
-    const auto python =
-        run("/usr/bin/python3 -c 'import sys, xarray; ds = xarray.open_dataset(sys.argv[1]); "
-            "assert ds[\"max_depth\"].dims == (\"y\", \"x\"); "
-            "assert list(ds[\"gauge_name\"].values) == [\"centre\", \"bank\"]' " +
-            out.string());
+  SECTION("xarray opens it, with the scene's date of t = 0") {
+    const auto python = run(
+        "/usr/bin/python3 -c 'import sys, numpy, xarray; ds = xarray.open_dataset(sys.argv[1]); "
+        "assert ds[\"max_depth\"].dims == (\"y\", \"x\"); "
+        "assert list(ds[\"gauge_name\"].values) == [\"centre\", \"bank\"]; "
+        "assert ds[\"time\"].values[1] == numpy.datetime64(\"2024-06-01T12:00:05\"), "
+        "ds[\"time\"].values' " +
+        out.string());
     INFO(python.output);
     CHECK(python.status == 0);
+  }
+
+  SECTION("the file records where it came from") {
+    int ncid = -1;
+    REQUIRE(nc_open(out.c_str(), NC_NOWRITE, &ncid) == NC_NOERR);
+    const auto text = [&](const char* name) {
+      std::size_t n = 0;
+      if (nc_inq_attlen(ncid, NC_GLOBAL, name, &n) != NC_NOERR) return std::string("(absent)");
+      std::string value(n, '\0');
+      REQUIRE(nc_get_att_text(ncid, NC_GLOBAL, name, value.data()) == NC_NOERR);
+      return value;
+    };
+    CHECK(text("program") == std::string("swe-mps ") + SWEMPS_VERSION);
+    CHECK_THAT(text("command_line"), Catch::StartsWith("swe-mps run "));
+    CHECK(text("run_started").size() == 20);  // 2026-11-26T15:01:20Z
+    CHECK_THAT(text("history"), Catch::EndsWith(text("command_line")));
+    CHECK(text("time_coverage_start") == "2024-06-01T12:00:00Z");
+    // The scene as read, with the defaults it took filled in.
+    const auto scene = nlohmann::json::parse(text("scenario"));
+    CHECK(scene["end_time"] == 20);
+    CHECK(scene["numerics"]["scheme"] == "conservative");
+    CHECK(scene["output"]["wet_depth"] == 0.01);
+    CHECK(scene["output"]["land_use"] == "urban");
+    CHECK(scene["water"][0]["spacing"] == 10);
+    nc_close(ncid);
+  }
+
+  SECTION("the gauges as CSV hold the netCDF series") {
+    const fs::path csv = dir / "lake_gauges.csv";
+    REQUIRE(fs::exists(csv));
+    std::ifstream in(csv);
+    std::string header;
+    std::getline(in, header);
+    CHECK(header ==
+          "time_s,centre_depth_m,centre_surface_elevation_m,centre_u_m_s,centre_v_m_s,"
+          "bank_depth_m,bank_surface_elevation_m,bank_u_m_s,bank_v_m_s");
+    const auto time = read_variable(out, "series_time");
+    const std::vector<std::vector<double>> series{
+        read_variable(out, "gauge_depth"), read_variable(out, "gauge_surface_elevation"),
+        read_variable(out, "gauge_u"), read_variable(out, "gauge_v")};
+    std::string line;
+    std::size_t t = 0;
+    for (; std::getline(in, line); ++t) {
+      REQUIRE(t < time.size());
+      std::vector<std::string> cells;
+      std::stringstream row(line);
+      for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+      if (!line.empty() && line.back() == ',') cells.emplace_back();
+      REQUIRE(cells.size() == 9);
+      INFO("row " << t << ": " << line);
+      CHECK(std::stod(cells[0]) == Approx(time[t]).epsilon(1e-11));
+      for (std::size_t g = 0; g < 2; ++g) {
+        for (std::size_t k = 0; k < 4; ++k) {
+          const double v = series[k][t * 2 + g];
+          const std::string& cell = cells[1 + g * 4 + k];
+          // Missing values (a dry gauge's surface and velocity) are empty cells.
+          if (v == NC_FILL_DOUBLE) {
+            CHECK(cell.empty());
+          } else {
+            REQUIRE_FALSE(cell.empty());
+            CHECK(std::stod(cell) == Approx(v).epsilon(1e-11).margin(1e-300));
+          }
+        }
+      }
+    }
+    CHECK(t == time.size());
+    // The lake's centre is wet: its surface is bed plus depth, the bed there 302 m and the
+    // bowl's curvature over the half cell to the nearest cell centres (0.002 x 25 m, twice).
+    CHECK(series[1][0] - series[0][0] == Approx(302.05).margin(0.06));
+  }
+
+  SECTION("the scene's GeoTIFF maps are the netCDF maps") {
+    const auto depth_tif = open_raster((dir / "lake_max_depth.tif").string());
+    const auto class_tif = open_raster((dir / "lake_hazard_class_aidr.tif").string());
+    REQUIRE(depth_tif != nullptr);
+    REQUIRE(class_tif != nullptr);
+    CHECK_FALSE(fs::exists(dir / "lake_max_speed.tif"));  // not asked for
+    CHECK(std::string(depth_tif->GetMetadataItem("LAYOUT", "IMAGE_STRUCTURE")) == "COG");
+    const auto dem = open_raster((dir / "bed.tif").string());
+    std::array<double, 6> expected{}, found{};
+    REQUIRE(dem->GetGeoTransform(expected.data()) == CE_None);
+    REQUIRE(depth_tif->GetGeoTransform(found.data()) == CE_None);
+    for (std::size_t k = 0; k < 6; ++k) CHECK(found[k] == Approx(expected[k]).margin(1e-6));
+    CHECK(depth_tif->GetSpatialRef()->IsSame(dem->GetSpatialRef()));
+    const auto nc_depth = read_variable(out, "max_depth");
+    const auto nc_class = read_variable(out, "hazard_class_aidr");
+    std::vector<float> tif_depth(40 * 30);
+    std::vector<unsigned char> tif_class(40 * 30);
+    REQUIRE(depth_tif->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 40, 30, tif_depth.data(), 40, 30,
+                                                  GDT_Float32, 0, 0) == CE_None);
+    REQUIRE(class_tif->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, 40, 30, tif_class.data(), 40, 30,
+                                                  GDT_Byte, 0, 0) == CE_None);
+    std::size_t flooded = 0;
+    for (std::size_t row = 0; row < 30; ++row) {
+      for (std::size_t col = 0; col < 40; ++col) {
+        // GeoTIFF rows run north to south, the netCDF grid's south to north.
+        const std::size_t c = (29 - row) * 40 + col, p = row * 40 + col;
+        CHECK(tif_depth[p] == static_cast<float>(nc_depth[c]));
+        // Never wet (class 0) is nodata (0) in the raster too.
+        CHECK(static_cast<double>(tif_class[p]) == nc_class[c]);
+        if (nc_class[c] > 0.0) ++flooded;
+      }
+    }
+    CHECK(flooded > 100);
+  }
+
+  SECTION("the log beside the result keeps the debug messages the terminal did not show") {
+    std::ifstream in(dir / "lake.log");
+    REQUIRE(in.good());
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    CHECK_THAT(log, Catch::Contains("[info] wrote " + out.string()));
+    CHECK_THAT(log, Catch::Contains("[debug] wrote output at t = 20 s"));
+    CHECK_THAT(r.output, !Catch::Contains("wrote output at t = 20 s"));
   }
   fs::remove_all(dir);
 }
@@ -321,8 +490,9 @@ TEST_CASE("the point bed term warns of a bed finer than the particles", "[cli]")
   CHECK_THAT(r.output, Catch::Contains("effect 'bed slope'"));
 }
 
-TEST_CASE("under the point bed term a raster three particle spacings fine or coarser draws no warning",
-          "[cli]") {
+TEST_CASE(
+    "under the point bed term a raster three particle spacings fine or coarser draws no warning",
+    "[cli]") {
   const swemps::testing::TempDir scratch("cli-smooth-bed");
   const fs::path& dir = scratch.path();
   write_bowl(dir / "bed.tif");

@@ -216,6 +216,10 @@ TEST_CASE("a breakdown exits 3 and writes the last good state", "[cli][breakdown
     CHECK(times[1] > 0.05);
     CHECK(times[1] < 0.1);
     CHECK(file.last_particles("particle_x").size() > 400);
+    // The log beside the result ends with how the run ended, as the terminal got it.
+    const std::string log = read_text(dir.path() / "collapse.log");
+    CHECK_THAT(log, Contains("[error] the simulation broke down: the time step collapsed"));
+    CHECK_THAT(log, Contains("(exit status 3)\n"));
   }
   SECTION("a non-finite velocity") {
     const auto scene = write_scene(dir.path(), "thin.json", kThinScene);
@@ -264,6 +268,13 @@ TEST_CASE("SIGTERM and SIGINT stop the run with a readable file and a checkpoint
     CHECK(file.attribute("run_status") == "complete");
     CHECK_THAT(file.attribute("history"), Contains("--restart"));
     require_same_end(dir.path() / "straight.nc", out);
+    // One log for the run, the restart's lines after the stopped run's.
+    const std::string run_log = read_text(dir.path() / "stopped.log");
+    const auto stopped_at = run_log.find("stopped by SIGTERM");
+    const auto going_on_at = run_log.find("going on from checkpoint");
+    CHECK(stopped_at != std::string::npos);
+    CHECK(going_on_at != std::string::npos);
+    CHECK(stopped_at < going_on_at);
   }
   SECTION("SIGINT") {
     const auto out = dir.path() / "interrupted.nc";

@@ -236,7 +236,7 @@ Grid utm_grid() {
 // Statistics with a known pattern: cell 0 never has data, cell 1 is never wet, the others
 // flood at the second sample.
 FloodStatistics make_statistics(std::size_t cells) {
-  FloodStatistics stats(cells, 0.05);
+  FloodStatistics stats(cells, {0.05, {0.25}});
   std::vector<double> dry(cells, 0.01), wet(cells), u(cells, 1.0), v(cells, 0.0);
   for (std::size_t i = 0; i < cells; ++i) wet[i] = 0.1 * static_cast<double>(i);
   dry[0] = wet[0] = kNaN;
@@ -288,7 +288,7 @@ TEST_CASE("NetcdfWriter writes a CF file under a temporary name", "[io][netcdf]"
     CHECK_THROWS_AS(w.write(5.0, p0, m0.fields()), std::logic_error);
     CHECK_THROWS_AS(w.write_series(5.0, {}, BalanceSample{}), std::logic_error);
     CHECK_THROWS_AS(w.write_bed(m0.depth), std::logic_error);
-    CHECK_THROWS_AS(w.write_summary(FloodStatistics(cells, 0.01)), std::logic_error);
+    CHECK_THROWS_AS(w.write_summary(FloodStatistics(cells, {0.01})), std::logic_error);
   }
   CHECK(fs::exists(file));  // the destructor of a finished writer leaves the file alone
 
@@ -396,8 +396,9 @@ TEST_CASE("NetcdfWriter writes a CF file under a temporary name", "[io][netcdf]"
     }
   }
   SECTION("variables written once are absent when never written") {
-    for (const char* name : {"bed_elevation", "max_depth", "max_speed", "max_hazard",
-                             "arrival_time", "inundation_duration"}) {
+    for (const char* name :
+         {"bed_elevation", "max_depth", "max_speed", "max_depth_speed", "max_hazard_rating",
+          "hazard_class_uk", "hazard_class_aidr", "arrival_time", "inundation_duration"}) {
       INFO("variable " << name);
       CHECK_FALSE(r.has_var(name));
     }
@@ -476,9 +477,10 @@ TEST_CASE("NetcdfWriter georeferences the grid for GDAL", "[io][netcdf][crs]") {
                         &transform[2], &transform[3], &transform[4], &transform[5]) == 6);
     CHECK(transform == expected);
 
-    for (const char* name : {"depth", "surface_elevation", "u", "v", "bed_elevation", "max_depth",
-                             "max_speed", "max_hazard", "arrival_time", "inundation_duration",
-                             "gauge_depth", "gauge_u", "gauge_v"}) {
+    for (const char* name :
+         {"depth", "surface_elevation", "u", "v", "bed_elevation", "max_depth", "max_speed",
+          "max_depth_speed", "arrival_time", "inundation_duration", "hazard_class_uk",
+          "gauge_surface_elevation", "gauge_depth", "gauge_u", "gauge_v"}) {
       INFO("variable " << name);
       CHECK(r.text(name, "grid_mapping") == "crs");
     }
@@ -579,7 +581,7 @@ TEST_CASE("NetcdfWriter writes the whole-run summary maps", "[io][netcdf][summar
   {
     NetcdfWriter w(file, layout_of(grid, false), metadata());
     w.write(0.0, SweParticles{}, make_maps(cells, 0.0).fields());
-    CHECK_THROWS_AS(w.write_summary(FloodStatistics(cells - 1, 0.05)), std::invalid_argument);
+    CHECK_THROWS_AS(w.write_summary(FloodStatistics(cells - 1, {0.05})), std::invalid_argument);
     w.write_summary(stats);
     CHECK_THROWS_AS(w.write_summary(stats), std::logic_error);
     w.finish();
@@ -590,10 +592,23 @@ TEST_CASE("NetcdfWriter writes the whole-run summary maps", "[io][netcdf][summar
     std::span<const double> values;
     const char* units;
   } summary[] = {{"max_depth", stats.max_depth(), "m"},
+                 {"time_of_max_depth", stats.time_of_max_depth(), "s"},
+                 {"max_surface_elevation", stats.max_surface_elevation(), "m"},
                  {"max_speed", stats.max_speed(), "m s-1"},
-                 {"max_hazard", stats.max_hazard(), "m2 s-1"},
-                 {"arrival_time", stats.arrival_time(), "s"},
-                 {"inundation_duration", stats.inundation_duration(), "s"}};
+                 {"max_depth_speed", stats.max_depth_speed(), "m2 s-1"},
+                 {"max_depth_speed2", stats.max_depth_speed2(), "m3 s-2"},
+                 {"max_hazard_rating", stats.max_hazard_rating(), "1"}};
+  const auto check_stored = [&](const std::vector<float>& stored, std::span<const double> values) {
+    REQUIRE(stored.size() == values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      INFO("cell " << i);
+      if (std::isnan(values[i])) {
+        CHECK(stored[i] == NC_FILL_FLOAT);
+      } else {
+        CHECK(stored[i] == static_cast<float>(values[i]));
+      }
+    }
+  };
   for (const auto& s : summary) {
     INFO("variable " << s.name);
     CHECK(r.dim_names(s.name) == std::vector<std::string>{"y", "x"});
@@ -605,23 +620,31 @@ TEST_CASE("NetcdfWriter writes the whole-run summary maps", "[io][netcdf][summar
     if (std::string(s.name) != "max_depth") {  // the only one that does not depend on it
       CHECK(r.text(s.name, "comment").find("depth > 0.05 m") != std::string::npos);
     }
-    const std::vector<float> stored = r.floats(s.name);
-    REQUIRE(stored.size() == cells);
-    for (std::size_t i = 0; i < cells; ++i) {
-      INFO("cell " << i);
-      if (std::isnan(s.values[i])) {
-        CHECK(stored[i] == NC_FILL_FLOAT);
-      } else {
-        CHECK(stored[i] == static_cast<float>(s.values[i]));
-      }
-    }
+    check_stored(r.floats(s.name), s.values);
   }
   CHECK(r.text("max_depth", "standard_name") == "flood_water_thickness");
   CHECK(r.text("max_depth", "cell_methods") == "time: maximum");
-  CHECK(r.text("max_hazard", "long_name").find("depth times speed (hazard)") != std::string::npos);
+  CHECK(r.text("max_hazard_rating", "long_name").find("HR = d (v + 0.5) + DF") !=
+        std::string::npos);
+  CHECK(r.text("max_hazard_rating", "comment").find("urban") != std::string::npos);
   CHECK(r.text("inundation_duration", "comment").find("(t_{k-1}, t_k]") != std::string::npos);
 
-  // The pattern of make_statistics: no data, never wet, and wet from t = 4 s to 10 s.
+  // One map per depth threshold: the wet depth, then the scene's further ones.
+  CHECK(r.all_doubles("depth_threshold") == std::vector<double>{0.05, 0.25});
+  for (const char* name : {"arrival_time", "inundation_duration"}) {
+    INFO("variable " << name);
+    CHECK(r.dim_names(name) == std::vector<std::string>{"depth_threshold", "y", "x"});
+    const std::vector<float> stored = r.floats(name);
+    REQUIRE(stored.size() == 2 * cells);
+    const bool arrival = std::string(name) == "arrival_time";
+    for (std::size_t j = 0; j < 2; ++j) {
+      check_stored({stored.begin() + static_cast<long>(j * cells),
+                    stored.begin() + static_cast<long>((j + 1) * cells)},
+                   arrival ? stats.arrival_time(j) : stats.duration_above(j));
+    }
+  }
+  // The pattern of make_statistics: no data, never wet, and wet from t = 4 s to 10 s; cells
+  // 3 and up are 0.3 m and deeper, above 0.25 m.
   const std::vector<float> arrival = r.floats("arrival_time");
   const std::vector<float> duration = r.floats("inundation_duration");
   CHECK(arrival[0] == NC_FILL_FLOAT);
@@ -629,6 +652,25 @@ TEST_CASE("NetcdfWriter writes the whole-run summary maps", "[io][netcdf][summar
   CHECK(duration[1] == 0.0f);
   CHECK(arrival[5] == 4.0f);
   CHECK(duration[5] == 10.0f);
+  CHECK(arrival[cells + 2] == NC_FILL_FLOAT);  // 0.2 m
+  CHECK(arrival[cells + 3] == 4.0f);
+
+  // Hazard classes as CF flags: 0 never wet, the fill value where no data.
+  for (const char* name : {"hazard_class_uk", "hazard_class_aidr"}) {
+    INFO("variable " << name);
+    CHECK(r.dim_names(name) == std::vector<std::string>{"y", "x"});
+    CHECK(r.text(name, "flag_meanings").rfind("not_flooded ", 0) == 0);
+  }
+  CHECK(r.text("hazard_class_aidr", "flag_meanings") == "not_flooded H1 H2 H3 H4 H5 H6");
+  const std::vector<double> uk = r.all_doubles("hazard_class_uk");
+  const std::vector<double> aidr = r.all_doubles("hazard_class_aidr");
+  CHECK(uk[0] == 255.0);
+  CHECK(uk[1] == 0.0);
+  CHECK(aidr[1] == 0.0);
+  // Cell 5: 0.5 m at 1 m/s: HR = 0.5 x 1.5 + 1 (urban, 0.25-0.75 m) = 1.75, significant;
+  // d v = 0.5 within H2's 0.6 and d = 0.5 within its 0.5 m.
+  CHECK(uk[5] == 3.0);
+  CHECK(aidr[5] == 2.0);
 }
 
 TEST_CASE("NetcdfWriter writes gauge and volume-balance series", "[io][netcdf][series]") {
@@ -742,8 +784,11 @@ TEST_CASE("NetcdfWriter output opens in xarray", "[io][netcdf][python]") {
       "assert ds['depth'].dims == ('time', 'y', 'x'), ds['depth'].dims\n"
       "assert ds['gauge_depth'].dims == ('series_time', 'gauge'), ds['gauge_depth'].dims\n"
       "assert list(ds['gauge_name'].values) == ['g1'], ds['gauge_name'].values\n"
-      "assert np.isnan(ds['arrival_time'].values[0, 0])\n"
-      "assert float(ds['arrival_time'].values[1, 1]) == 4.0\n"
+      "assert ds['arrival_time'].dims == ('depth_threshold', 'y', 'x'), ds['arrival_time'].dims\n"
+      "arrival = ds['arrival_time'].sel(depth_threshold=0.05)\n"
+      "assert np.isnan(arrival.values[0, 0])\n"
+      "assert float(arrival.values[1, 1]) == 4.0\n"
+      "assert int(ds['hazard_class_aidr'].values[1, 1]) == 2, ds['hazard_class_aidr'].values\n"
       "assert ds['depth'].sizes['time'] == 2 and ds['x'].size == 4 and ds['y'].size == 3\n"
       "assert 'crs_wkt' in ds['crs'].attrs\n";
   const fs::path script_file = tmp.path() / "check.py";

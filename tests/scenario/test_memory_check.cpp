@@ -79,8 +79,8 @@ TEST_CASE("a scene that needs more than the machine has is refused with the numb
     CHECK(e.json_path() == "/water/0/spacing");
     const std::string message = e.what();
     CHECK_THAT(message, Contains("about 1050 particles (2100 with splitting's headroom)"));
-    CHECK_THAT(message, Contains("160 output grid cells, needing about 2.12 MB"));
-    CHECK_THAT(message, Contains("fits in the 1.06 MB of memory swe-mps may use here"));
+    CHECK_THAT(message, Contains("160 output grid cells, needing about 2.14 MB"));
+    CHECK_THAT(message, Contains("fits in the 1.07 MB of memory swe-mps may use here"));
   }
 }
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "../support/broken_scenes.hpp"
+#include "swemps/io/flood_products.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
@@ -66,7 +67,8 @@ std::vector<Broken> broken_scenes() {
          s["numerics"] = {{"zzzzzz", 1}};
        }),
        "/numerics/zzzzzz",
-       "one of the keys scheme, cfl, alpha_e, max_area_ratio, gradient, kappa, kernel, dissipation, "
+       "one of the keys scheme, cfl, alpha_e, max_area_ratio, gradient, kappa, kernel, "
+       "dissipation, "
        "shifting, bed_term, min_time_step, eddy_viscosity"},
       {"missing end_time", edited([](json& s) { s.erase("end_time"); }), "/end_time",
        "found nothing (key missing), expected a number > 0 (seconds)"},
@@ -450,6 +452,11 @@ TEST_CASE("omitted keys take their defaults", "[scenario]") {
   CHECK(s.output.gauges.empty());
   CHECK(s.output.series_interval_s == Approx(0.5 / 500));
   CHECK(s.output.wet_depth_m == 0.01);
+  CHECK(s.output.depth_thresholds_m == std::vector<double>{0.1, 0.3, 0.5, 1.0});
+  CHECK(s.output.land_use == swemps::maps::LandUse::urban);
+  CHECK_FALSE(s.output.start_time.has_value());
+  CHECK(s.output.rasters.empty());
+  CHECK(s.output.raster_cog);
   CHECK(s.output.write_particles);
   CHECK(s.output.path.is_absolute());
   CHECK(s.output.path == (fs::absolute(base) / "ritter.nc").lexically_normal());
@@ -853,6 +860,42 @@ std::vector<Broken> broken_terrain_scenes() {
          s["output"] = {{"wet_depth", -0.01}};
        }),
        "/output/wet_depth", "found -0.01, expected a number >= 0 (metres)"},
+      {"depth threshold at the wet depth", edited([](json& s) {
+         s["output"] = {{"wet_depth", 0.1}, {"depth_thresholds", {0.3, 0.1}}};
+       }),
+       "/output/depth_thresholds/1", "found 0.1, expected a depth above wet_depth (0.1 m)"},
+      {"depth thresholds not a list", edited([](json& s) {
+         s["output"] = {{"depth_thresholds", 0.3}};
+       }),
+       "/output/depth_thresholds", "found 0.3, expected an array of depths (metres)"},
+      {"misspelt land use", edited([](json& s) {
+         s["output"] = {{"land_use", "urbane"}};
+       }),
+       "/output/land_use", "did you mean \"urban\"?"},
+      {"start time without a date", edited([](json& s) {
+         s["output"] = {{"start_time", "12:00"}};
+       }),
+       "/output/start_time", "found a string \"12:00\", expected an ISO 8601 date and time"},
+      {"start time on the 30th of February", edited([](json& s) {
+         s["output"] = {{"start_time", "2024-02-30T00:00:00Z"}};
+       }),
+       "/output/start_time", "expected an ISO 8601 date and time"},
+      {"start time with a bad zone", edited([](json& s) {
+         s["output"] = {{"start_time", "2024-06-01T12:00:00+2"}};
+       }),
+       "/output/start_time", "expected an ISO 8601 date and time"},
+      {"unknown raster map", edited([](json& s) {
+         s["output"] = {{"rasters", {"max_depth", "max_dpth"}}};
+       }),
+       "/output/rasters/1", "did you mean \"max_depth\"?"},
+      {"rasters neither all nor a list", edited([](json& s) {
+         s["output"] = {{"rasters", "some"}};
+       }),
+       "/output/rasters", "expected \"all\" or an array of map names"},
+      {"unknown raster format", edited([](json& s) {
+         s["output"] = {{"raster_format", "tiff"}};
+       }),
+       "/output/raster_format", "expected one of \"cog\", \"geotiff\""},
   };
 }
 
@@ -943,6 +986,81 @@ TEST_CASE("a raster scene arrives as given, with its domain left to the bed", "[
   CHECK(s.output.gauges[1].name == "gauge 1");
   CHECK(s.output.series_interval_s == 2.0);
   CHECK(s.output.wet_depth_m == 0.05);
+}
+
+TEST_CASE("flood products arrive as given", "[scenario]") {
+  SECTION("thresholds, land use, start time and rasters") {
+    const auto s = parse_text(edited([](json& j) {
+      j["output"] = {{"wet_depth", 0.05},
+                     {"depth_thresholds", {1.0, 0.25}},
+                     {"land_use", "pasture_arable"},
+                     {"start_time", "2024-06-01T12:30+02:00"},
+                     {"rasters", {"hazard_class_uk", "max_depth", "hazard_class_uk"}},
+                     {"raster_format", "geotiff"}};
+    }));
+    CHECK(s.output.depth_thresholds_m == std::vector<double>{1.0, 0.25});
+    CHECK(s.output.land_use == swemps::maps::LandUse::pasture_arable);
+    CHECK(s.output.start_time == "2024-06-01T12:30+02:00");
+    CHECK(s.output.start_time_units == "seconds since 2024-06-01 12:30:00 +02:00");
+    CHECK(s.output.rasters == std::vector<std::string>{"hazard_class_uk", "max_depth"});
+    CHECK_FALSE(s.output.raster_cog);
+  }
+  SECTION("the default thresholds above a deep wet depth, a date alone, every raster") {
+    const auto s = parse_text(edited([](json& j) {
+      j["output"] = {{"wet_depth", 0.3}, {"start_time", "2000-02-29"}, {"rasters", "all"}};
+    }));
+    CHECK(s.output.depth_thresholds_m == std::vector<double>{0.5, 1.0});
+    CHECK(s.output.start_time_units == "seconds since 2000-02-29 00:00:00");
+    CHECK(s.output.rasters == swemps::io::exportable_maps());
+  }
+  SECTION("UTC") {
+    const auto s = parse_text(edited([](json& j) {
+      j["output"] = {{"start_time", "2011-03-11 05:46:24Z"}};
+    }));
+    CHECK(s.output.start_time_units == "seconds since 2011-03-11 05:46:24 +00:00");
+  }
+}
+
+TEST_CASE("the scene as read records the defaults it took", "[scenario]") {
+  const auto s = parse_text(edited([](json& j) { j["output"] = {{"wet_depth", 0.05}}; }));
+  const json as_read = json::parse(s.as_read_json);
+  // Given: kept as written.
+  CHECK(as_read["output"]["wet_depth"] == 0.05);
+  // Left out: the value the scene ran with.
+  CHECK(as_read["numerics"]["scheme"] == "conservative");
+  CHECK(as_read["numerics"]["cfl"] == s.numerics.cfl);
+  CHECK(as_read["output"]["series_interval"] == s.output.series_interval_s);
+  CHECK(as_read["output"]["land_use"] == "urban");
+  CHECK(as_read["output"]["depth_thresholds"] == json::array({0.1, 0.3, 0.5, 1.0}));
+  CHECK(as_read["output"]["particles"] == true);
+  CHECK(as_read["gravity"] == 9.81);
+  // Read again, it is the same scene.
+  const auto again = swemps::scenario::parse(s.as_read_json, fs::temp_directory_path(), "again");
+  CHECK(again.numerics.cfl == s.numerics.cfl);
+  CHECK(again.output.series_interval_s == s.output.series_interval_s);
+  CHECK(again.output.depth_thresholds_m == s.output.depth_thresholds_m);
+}
+
+TEST_CASE("every shipped scene read again as recorded is the same scene", "[scenario]") {
+  const fs::path cases = fs::path(SWEMPS_SOURCE_DIR) / "cases";
+  std::size_t scenes = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(cases)) {
+    if (entry.path().extension() != ".json") continue;
+    const std::string text = [&] {
+      std::ifstream in(entry.path());
+      return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    }();
+    if (json::parse(text).contains("sweep")) continue;  // a study file, not a scene
+    INFO(entry.path().string());
+    const auto first = swemps::scenario::parse(text, entry.path().parent_path(), "scene");
+    const auto again =
+        swemps::scenario::parse(first.as_read_json, entry.path().parent_path(), "scene");
+    CHECK(again.as_read_json == first.as_read_json);
+    CHECK(again.output.path == first.output.path);
+    CHECK(again.numerics.cfl == first.numerics.cfl);
+    ++scenes;
+  }
+  CHECK(scenes >= 10);
 }
 
 TEST_CASE("a scene may start dry when an inflow brings the water", "[scenario]") {

@@ -12,8 +12,9 @@ namespace swemps::cli {
 enum class Verbosity { quiet, normal, verbose };
 
 struct Options {
-  std::string command;             // "run", "compare", "study", or "help" / "version"
-  std::filesystem::path scenario;  // the scene; for study, the study file
+  // "run", "compare", "study", "check", "export", or "help" / "version"
+  std::string command;
+  std::filesystem::path scenario;  // the scene; study: the study file; export: the result
   // -o: run writes here instead of the scene's output path; compare takes it as the stem of
   // its files; study writes its table here.
   std::optional<std::filesystem::path> output;
@@ -25,6 +26,10 @@ struct Options {
   // run, shallow water: write a checkpoint every this many output times; 0: only when the
   // run stops early (a signal, a breakdown)
   int checkpoint_every = 0;
+  // export: the maps to write (empty: all) and the GeoTIFF layout ("cog" or "geotiff"; empty:
+  // "cog")
+  std::vector<std::string> maps;
+  std::string format;
 };
 
 class UsageError : public std::runtime_error {

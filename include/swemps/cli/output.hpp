@@ -84,13 +84,19 @@ class MapOutput {
   void write_maps(double time_s, const GriddedState& state,
                   const particles::SweParticles* particles = nullptr);
 
-  // One series sample: the gauges, the volume balance and the flood statistics.
-  void sample(double time_s, const GriddedState& state, std::span<const io::GaugeSample> gauges,
-              const io::BalanceSample& balance);
+  // The flood statistics take one more sample of the gridded state (a shallow-water run gives
+  // every step, the Navier-Stokes mode its series samples).
+  void update_statistics(double time_s, const GriddedState& state);
+  // One series sample: the gauges and the volume balance.
+  void sample_series(double time_s, std::span<const io::GaugeSample> gauges,
+                     const io::BalanceSample& balance);
 
-  void finish();  // summary maps and run_status "complete", then the file gets its final name
+  // Summary maps and run_status "complete", then the file gets its final name; then the
+  // scene's GeoTIFF maps and the gauge CSV are made from it (io/flood_products.hpp).
+  void finish();
   // For a run that stops early: the summary maps of the samples so far, the status
-  // ("interrupted", "breakdown", "failed") and its message; the file is closed and stays <path>.partial.
+  // ("interrupted", "breakdown", "failed") and its message; the file is closed and stays
+  // <path>.partial.
   void close_stopped(const std::string& status, const std::string& message);
   void flush();  // what is written so far onto the disk (before a checkpoint)
 
@@ -103,10 +109,15 @@ class MapOutput {
   const std::filesystem::path& path() const { return writer_->path(); }
   const std::filesystem::path& partial_path() const { return writer_->partial_path(); }
   double wet_depth_m() const { return wet_depth_m_; }
+  // The bed elevation at a point (m; 0 without a bed), for the gauges' water surface.
+  double bed_at(double x_m, double y_m) const;
 
  private:
   double wet_depth_m_;
-  std::vector<double> bed_m_;  // at cell centres; 0 without a bed
+  std::vector<std::string> rasters_;  // written as GeoTIFF by finish()
+  bool raster_cog_;
+  std::shared_ptr<const swe::BedSource> bed_;  // null: flat at z = 0
+  std::vector<double> bed_m_;                  // at cell centres; 0 without a bed
   maps::FloodStatistics statistics_;
   std::unique_ptr<io::NetcdfWriter> writer_;
 };

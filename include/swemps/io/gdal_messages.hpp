@@ -5,6 +5,7 @@
 // their exceptions; whatever GDAL reports outside them goes to the sink set here.
 
 #include <functional>
+#include <string>
 #include <string_view>
 
 namespace swemps::io {
@@ -23,5 +24,11 @@ class QuietGdalErrors {
   QuietGdalErrors(const QuietGdalErrors&) = delete;
   QuietGdalErrors& operator=(const QuietGdalErrors&) = delete;
 };
+
+// GDAL's drivers, registered once for the process, before the first file is opened.
+void register_gdal_drivers();
+
+// " (GDAL: <the last message>)", for an exception's text; empty when GDAL said nothing.
+std::string gdal_detail();
 
 }  // namespace swemps::io

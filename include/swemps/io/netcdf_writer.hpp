@@ -16,6 +16,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -38,8 +39,15 @@ struct Grid {
 struct RunMetadata {
   std::string title;          // global attribute "title"
   std::string scenario_file;  // global attribute "source"
-  std::string history;        // global attribute "history" (command line)
+  std::string history;        // global attribute "history": when, and the command line
   double gravity_m_s2 = 9.81;
+  // Provenance, each a global attribute of its name unless empty: "program" (name and
+  // version), "scenario" (the scene as read, defaults filled in, as JSON), "command_line",
+  // "run_started" (wall-clock UTC, ISO 8601) and "time_coverage_start" (the real date and time
+  // of t = 0, ISO 8601, when the scene gives one).
+  std::string program, scene_json, command_line, run_started, start_time;
+  // The units of the time axes: seconds since the scene's start time, or since a nominal epoch.
+  std::string time_units = "seconds since 1970-01-01 00:00:00";
 };
 
 // A point where depth and velocity are recorded at every series sample.
@@ -69,6 +77,7 @@ struct MapFields {
 struct GaugeSample {
   double depth_m = 0.0;
   double u_m_s = 0.0, v_m_s = 0.0;
+  double surface_m = std::numeric_limits<double>::quiet_NaN();  // bed + depth; NaN where dry
 };
 
 // Volume balance at one series time.
@@ -93,7 +102,7 @@ struct NetcdfIds {
   int y_dim = -1, x_dim = -1;
   int time = -1, depth = -1, surface = -1, u = -1, v = -1;
   int count = -1, px = -1, py = -1, pu = -1, pv = -1, ph = -1, pvol = -1, parea = -1;
-  int series_time = -1, gauge_depth = -1, gauge_u = -1, gauge_v = -1;
+  int series_time = -1, gauge_depth = -1, gauge_surface = -1, gauge_u = -1, gauge_v = -1;
   int in_domain = -1, inflow = -1, outflow = -1, error = -1;
 };
 }  // namespace detail

@@ -1,33 +1,54 @@
 #pragma once
-// Whole-run flood statistics per grid cell, accumulated from samples of the gridded depth
-// and velocity: how deep the water got, how fast it flowed, how hazardous it was, when it
-// arrived and how long it stayed. Pure arithmetic on spans; writing the result is up to io.
+// Whole-run flood statistics per grid cell (the envelopes of a run), accumulated from samples
+// of the gridded depth and velocity: how deep and how high the water got, how fast it flowed,
+// how hazardous it was, when it arrived and how long it stayed. A shallow-water run samples
+// every step, so that a peak between two output times is not missed. Pure arithmetic on spans;
+// writing the result is up to io.
 //
 // Rules, per cell, over the samples t_0 < t_1 < ... given to update():
 // - A sample has data where its depth is not NaN; samples without data are skipped.
-// - The cell is wet at sample k when depth_k > wet_depth (strictly).
+// - The cell is wet at sample k when depth_k > wet_depth (strictly); it is above threshold j
+//   when depth_k > threshold_j. Threshold 0 is the wet depth itself.
 // - max_depth: the largest depth of any sample with data.
-// - max_speed = max |(u, v)| and max_hazard = max depth * |(u, v)|, over wet samples with
-//   finite u and v only: velocities gridded from a film thinner than the threshold are
-//   noise, and would make the hazard map of the flood edge meaningless. 0 where the cell
-//   had data but was never wet.
-// - arrival_time: t_k of the first sample at which the cell is wet; NaN where never wet.
-// - inundation_duration: a cell wet at sample k counts as wet over (t_{k-1}, t_k], so the
-//   duration is the sum of t_k - t_{k-1} over the wet samples k >= 1; the first sample
-//   counts nothing, having no interval before it. 0 where never wet.
+// - time_of_max_depth: t_k of the first sample at which max_depth was reached; NaN where the
+//   cell was never wet (the largest depth of a film is no event).
+// - max_surface_elevation: the largest bed + depth over wet samples; NaN where never wet.
+// - max_speed = max |(u, v)|, max_depth_speed = max d |(u, v)|, max_depth_speed2 =
+//   max d |(u, v)|^2, max_hazard_rating = max HR(d, |(u, v)|) (hazard.hpp) and
+//   max_hazard_class = max H(d, |(u, v)|) (AIDR H1-H6 as 1-6), over wet samples with finite u
+//   and v only: velocities gridded from a film thinner than the wet depth are noise, and would
+//   make the map of the flood edge meaningless. 0 where the cell had data but was never wet.
+//   The hazard of each sample is that of the depth and speed at the same time; its maximum
+//   over the run is not the hazard of max_depth and max_speed, which may come at different
+//   times (docs/outputs.md).
+// - arrival_time(j): t_k of the first sample at which the cell is above threshold j; NaN where
+//   never.
+// - duration_above(j): a cell above threshold j at sample k counts as above it over
+//   (t_{k-1}, t_k], so the duration is the sum of t_k - t_{k-1} over those samples k >= 1;
+//   the first sample counts nothing, having no interval before it. 0 where never above.
 // Every map is NaN where the cell never had data.
 
 #include <cstddef>
 #include <span>
 #include <vector>
 
+#include "swemps/maps/hazard.hpp"
+
 namespace swemps::maps {
+
+struct StatisticsSettings {
+  double wet_depth_m = 0.01;  // >= 0: the depth a cell must exceed to count as wet
+  // Further depths to time arrival and duration at, each above the wet depth; any order.
+  std::vector<double> depth_thresholds_m;
+  LandUse land_use = LandUse::urban;  // the debris factor of the hazard rating
+};
 
 class FloodStatistics {
  public:
-  // `cells` grid cells; `wet_depth_m` >= 0 is the depth a cell must exceed to count as wet.
-  // Throws std::invalid_argument for a negative or non-finite threshold.
-  FloodStatistics(std::size_t cells, double wet_depth_m);
+  // `cells` grid cells; `bed_m`: the bed elevation of each cell (max_surface_elevation), or
+  // empty for a flat bed at z = 0. Throws std::invalid_argument for a negative or non-finite
+  // wet depth, a threshold not above it, or a bed of another size.
+  FloodStatistics(std::size_t cells, StatisticsSettings settings, std::vector<double> bed_m = {});
 
   // One sample of the gridded fields at `time_s`, each span `cells` long. Times must be
   // strictly increasing; throws std::invalid_argument otherwise or on a size mismatch,
@@ -35,29 +56,46 @@ class FloodStatistics {
   void update(double time_s, std::span<const double> depth, std::span<const double> u,
               std::span<const double> v);
 
-  std::span<const double> max_depth() const { return max_depth_; }                      // m
-  std::span<const double> max_speed() const { return max_speed_; }                      // m/s
-  std::span<const double> max_hazard() const { return max_hazard_; }                    // m^2/s
-  std::span<const double> arrival_time() const { return arrival_time_; }                // s
-  std::span<const double> inundation_duration() const { return inundation_duration_; }  // s
+  std::span<const double> max_depth() const { return max_depth_; }                  // m
+  std::span<const double> time_of_max_depth() const { return time_of_max_depth_; }  // s
+  std::span<const double> max_surface_elevation() const { return max_surface_; }    // m
+  std::span<const double> max_speed() const { return max_speed_; }                  // m/s
+  std::span<const double> max_depth_speed() const { return max_depth_speed_; }      // m^2/s
+  std::span<const double> max_depth_speed2() const { return max_depth_speed2_; }    // m^3/s^2
+  std::span<const double> max_hazard_rating() const { return max_hazard_rating_; }  // HR
+  std::span<const double> max_hazard_class() const { return max_hazard_class_; }    // 1-6
+  // Threshold j (thresholds()[j]); j = 0 is the wet depth.
+  std::span<const double> arrival_time(std::size_t j = 0) const { return arrival_[j]; }     // s
+  std::span<const double> duration_above(std::size_t j = 0) const { return duration_[j]; }  // s
 
-  // The five maps in the order above, and restore() of them: a run restarted from a
-  // checkpoint goes on with the statistics of the samples before it. restore() takes the maps,
-  // the sample count and last_time() as they were; throws std::invalid_argument (leaving the
-  // statistics unchanged) unless there are five maps of cells() values.
+  // The wet depth, then the further thresholds in ascending order.
+  const std::vector<double>& thresholds() const { return thresholds_m_; }
+  LandUse land_use() const { return land_use_; }
+
+  // Every map (those above in their order, then arrival_time(j), duration_above(j) for each
+  // j), and restore() of them: a run restarted from a checkpoint goes on with the statistics of
+  // the samples before it. restore() takes the maps, the sample count and last_time() as they
+  // were; throws std::invalid_argument (leaving the statistics unchanged) unless there are as
+  // many maps of cells() values as maps() gives.
   std::vector<std::span<const double>> maps() const;
   void restore(std::size_t samples, double last_time_s, std::vector<std::vector<double>> maps);
 
   std::size_t cells() const { return max_depth_.size(); }
-  double wet_depth() const { return wet_depth_m_; }
+  double wet_depth() const { return thresholds_m_.front(); }
   std::size_t samples() const { return samples_; }
   double last_time() const { return last_time_s_; }  // NaN before the first sample
 
  private:
-  double wet_depth_m_;
+  std::vector<std::vector<double>*> all_maps();
+
+  std::vector<double> thresholds_m_;
+  LandUse land_use_;
+  std::vector<double> bed_m_;
   std::size_t samples_ = 0;
   double last_time_s_;
-  std::vector<double> max_depth_, max_speed_, max_hazard_, arrival_time_, inundation_duration_;
+  std::vector<double> max_depth_, time_of_max_depth_, max_surface_, max_speed_, max_depth_speed_,
+      max_depth_speed2_, max_hazard_rating_, max_hazard_class_;
+  std::vector<std::vector<double>> arrival_, duration_;  // per threshold
 };
 
 }  // namespace swemps::maps

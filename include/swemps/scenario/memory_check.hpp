@@ -23,9 +23,11 @@ namespace swemps::scenario {
 // less that of a run refused at once). 1 kB, the project's memory target per particle, covers
 // both.
 inline constexpr double kBytesPerParticle = 1000.0;
-// A grid cell holds the gridded depth and velocity, the bed, five flood statistics, the maps'
-// masked copies and the single-precision buffer they are written through: 16 doubles.
-inline constexpr double kBytesPerGridCell = 128.0;
+// A grid cell holds the gridded depth and velocity, the bed, the flood statistics (eight maps,
+// and arrival and duration at the wet depth and four more thresholds by default), the maps'
+// masked copies and the single-precision buffer they are written through: 26 doubles, counted
+// as 32 to leave room for a longer list of thresholds.
+inline constexpr double kBytesPerGridCell = 256.0;
 // Splitting without a cap is assumed to double the particles at most (the benchmark's dam
 // break, docs/performance.md, grew from 1e4 to 2.1e4-2.6e4 before its front left the domain).
 inline constexpr double kSplittingGrowth = 2.0;

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "swemps/maps/hazard.hpp"
 #include "swemps/ns/settings.hpp"
 #include "swemps/splitting/particle_merging.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
@@ -134,8 +135,20 @@ struct Output {
   GridSpec grid;
   bool write_particles = true;
   std::vector<Gauge> gauges;
-  double series_interval_s = 0.0;  // gauges, volume balance and flood statistics
+  double series_interval_s = 0.0;  // gauges and volume balance
   double wet_depth_m = 0.01;       // the depth a cell must exceed to count as wet
+  // Further depths, each above wet_depth_m, at which the flood statistics time the arrival
+  // and the duration of the water (the wet depth is always the first).
+  std::vector<double> depth_thresholds_m;
+  maps::LandUse land_use = maps::LandUse::urban;  // the hazard rating's debris factor
+  // The real date and time of t = 0 as given (ISO 8601), and as the time axes' CF units
+  // ("seconds since 2024-06-01 12:00:00+02:00"); both absent: a nominal epoch.
+  std::optional<std::string> start_time;
+  std::optional<std::string> start_time_units;
+  // Whole-run maps written as GeoTIFF beside the netCDF file when the run completes
+  // (io::exportable_maps() names them); empty: none. Cloud-optimised unless raster_cog is false.
+  std::vector<std::string> rasters;
+  bool raster_cog = true;
 };
 
 // Which equations run the scene.
@@ -179,6 +192,9 @@ struct Scenario {
   // Model ns: 2 = a vertical x-z section along x (the scene's y is ignored), 3 = x, y, z.
   int dimension = 3;
   std::optional<NsSpec> ns;  // required with model ns; optional otherwise (compare needs it)
+  // The scene file's JSON with every default the reading took filled in, as text: what the
+  // run's files record of the scene.
+  std::string as_read_json;
 };
 
 // A problem in a scenario file: where (JSON path such as /water/0/depth), what was found,

@@ -1,0 +1,524 @@
+// `swe-mps check SCENE`: the scene is loaded, its output target tested, its rasters read and
+// its simulation built exactly as `run` does before its first step, so that a scene run would
+// refuse is refused here with the same message; then, instead of the run, a report on standard
+// output: the domain and CRS, the rasters, the particles, the memory, the first time step and a
+// wall-time estimate from a few real steps. Nothing is written: the steps are taken in memory
+// and no output file is opened.
+
+#include "swemps/cli/check_command.hpp"
+
+#include <ogr_spatialref.h>
+#include <omp.h>
+#include <spdlog/fmt/fmt.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "swemps/boundaries/hydrograph.hpp"
+#include "swemps/boundaries/inflow_line.hpp"
+#include "swemps/cli/output.hpp"
+#include "swemps/cli/output_target.hpp"
+#include "swemps/cli/runs.hpp"
+#include "swemps/cli/timing.hpp"
+#include "swemps/io/hydrograph_csv.hpp"
+#include "swemps/maps/flood_statistics.hpp"
+#include "swemps/scenario/build.hpp"
+#include "swemps/scenario/memory_check.hpp"
+
+namespace swemps::cli {
+
+namespace {
+
+// The timed steps stop at whichever comes first: enough to average over the costs that do not
+// come every step (sorting by cell), short enough for a check.
+constexpr std::size_t kTimedSteps = 20;
+constexpr double kTimingBudgetS = 3.0;
+// Without a particle to time (an inflow that let none in within the budget), a rate from
+// docs/performance.md is assumed: 5e5 particle-steps/s per thread, below every rate measured
+// there with the default scheme.
+constexpr double kAssumedRatePerThread = 5e5;
+
+// ---------------------------------------------------------------------------------------------
+// Words and numbers
+
+// 12345 -> "12,345": counts a reader compares at a glance.
+std::string count(double v) {
+  if (!std::isfinite(v)) return "?";
+  const std::string digits = fmt::format("{:.0f}", std::max(0.0, v));
+  std::string out;
+  for (std::size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+    out += digits[k];
+  }
+  return out;
+}
+
+// Four significant digits, without an exponent between 1e-3 and 1e9 (10,800 s, not 1.08e+04).
+std::string num(double v) {
+  const double a = std::abs(v);
+  if (a >= 1e4 && a < 1e9) return fmt::format("{}{}", v < 0.0 ? "-" : "", count(a));
+  if (a == 0.0 || (a >= 1e-3 && a < 1e4)) return fmt::format("{:.4g}", v);
+  return fmt::format("{:.3g}", v);
+}
+
+// A map coordinate to the centimetre, as it would be typed into a scene file.
+std::string coord(double v) {
+  std::string s = fmt::format("{:.2f}", v);
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s == "-0" ? "0" : s;
+}
+
+std::string box(double x0, double x1, double y0, double y1) {
+  return fmt::format("[{}, {}] x [{}, {}] m", coord(x0), coord(x1), coord(y0), coord(y1));
+}
+
+std::string duration(double s) {
+  if (s < 60.0) return fmt::format("{:.2g} s", s);
+  if (s < 3600.0) {
+    const auto whole = static_cast<long>(std::lround(s));
+    return fmt::format("{} min {} s", whole / 60, whole % 60);
+  }
+  const auto minutes = static_cast<long>(std::lround(s / 60.0));
+  return fmt::format("{} h {} min", minutes / 60, minutes % 60);
+}
+
+void heading(const std::string& title) { std::printf("\n%s\n", title.c_str()); }
+
+// Labels in one column, so that values line up down a section.
+void row(const std::string& label, const std::string& value) {
+  std::printf("  %-24s %s\n", label.c_str(), value.c_str());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scene, domain and rasters
+
+void scene_section(const scenario::Scenario& scene, const Options& options,
+                   const swe::RegularGrid& grid, const std::string& model) {
+  heading("Scene");
+  row("name", scene.name);
+  row("file", std::filesystem::absolute(options.scenario).lexically_normal().string());
+  row("model", model);
+  const std::size_t maps = scene.output.times_s.size();
+  row("end time", fmt::format("{} s, maps at t = 0 and {} later output time{}",
+                              num(scene.end_time_s), maps, maps == 1 ? "" : "s"));
+  // check_output_target has made and removed a file beside it: the folder takes new files.
+  std::error_code ec;
+  row("output",
+      scene.output.path.string() + (std::filesystem::exists(scene.output.path, ec)
+                                        ? " (folder writable; the file there will be replaced)"
+                                        : " (folder writable)"));
+  row("output grid",
+      fmt::format("{} x {} cells of {} x {} m over {}", count(double(grid.nx)),
+                  count(double(grid.ny)), num(grid.dx), num(grid.dy),
+                  box(grid.x0 - 0.5 * grid.dx, grid.x0 + (grid.nx - 0.5) * grid.dx,
+                      grid.y0 - 0.5 * grid.dy, grid.y0 + (grid.ny - 0.5) * grid.dy)));
+}
+
+std::string crs_name(const std::string& wkt) {
+  if (wkt.empty()) return "none (local metres)";
+  OGRSpatialReference crs;
+  if (crs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return "(a CRS GDAL cannot name)";
+  std::string name = crs.GetName() ? crs.GetName() : "unnamed";
+  const char* authority = crs.GetAuthorityName(nullptr);
+  const char* code = crs.GetAuthorityCode(nullptr);
+  if (authority && code) name += fmt::format(" ({}:{})", authority, code);
+  return name;
+}
+
+void domain_section(const scenario::Scenario& scene, const scenario::Terrain& terrain) {
+  const auto& d = terrain.domain;
+  const double wide_m = d.x_max - d.x_min, high_m = d.y_max - d.y_min;
+  // Kilometres for terrain, metres for a flume.
+  const bool km = std::max(wide_m, high_m) >= 1e3;
+  const double unit = km ? 1e3 : 1.0;
+  const char* name = km ? "km" : "m";
+  heading("Domain and CRS");
+  row("domain",
+      box(d.x_min, d.x_max, d.y_min, d.y_max) +
+          (scene.domain_from_bed ? " (the bed raster's extent)" : " (as the file gives it)"));
+  row("size", fmt::format("{} x {} {} ({} {}2)", num(wide_m / unit), num(high_m / unit), name,
+                          num(wide_m * high_m / (unit * unit)), name));
+  row("CRS", crs_name(terrain.crs_wkt));
+}
+
+// The cells of `field` that overlap the domain: their value range and nodata, beside the
+// nodata of the raster as read (a warp leaves nodata outside the source's footprint).
+void raster_rows(const std::string& what, const std::filesystem::path& file,
+                 const terrain::GriddedField& field, const scenario::Rectangle& d) {
+  const auto& g = field.geometry();
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  std::size_t inside = 0, nodata_inside = 0, nodata = 0;
+  for (std::size_t r = 0; r < g.rows; ++r) {
+    const double top = g.y_top - static_cast<double>(r) * g.cell_height;
+    const bool row_in = top > d.y_min && top - g.cell_height < d.y_max;
+    for (std::size_t c = 0; c < g.columns; ++c) {
+      const double left = g.x_left + static_cast<double>(c) * g.cell_width;
+      const bool in = row_in && left < d.x_max && left + g.cell_width > d.x_min;
+      const double v = field.at(c, r);
+      nodata += std::isnan(v) ? 1 : 0;
+      inside += in ? 1 : 0;
+      nodata_inside += in && std::isnan(v) ? 1 : 0;
+      if (!in || std::isnan(v)) continue;
+      low = std::min(low, v);
+      high = std::max(high, v);
+    }
+  }
+  row(what, file.string());
+  row("  extent", box(g.x_left, g.x_right(), g.y_bottom(), g.y_top));
+  row("  cells", fmt::format("{} x {} of {} x {} m", count(double(g.columns)),
+                             count(double(g.rows)), num(g.cell_width), num(g.cell_height)));
+  row("  values in the domain",
+      inside > nodata_inside
+          ? fmt::format("{} to {} ({} cells)", num(low), num(high), count(double(inside)))
+          : "none (every cell there is nodata)");
+  row("  nodata",
+      fmt::format("{} in the domain, {} of {} cells in all", count(double(nodata_inside)),
+                  count(double(nodata)), count(double(g.columns * g.rows))));
+}
+
+void rasters_section(const scenario::Scenario& scene, const scenario::Terrain& terrain) {
+  heading("Rasters (as read, in the scene's CRS)");
+  bool any = false;
+  if (const auto* bed = std::get_if<scenario::RasterBedSpec>(&scene.bed);
+      bed && terrain.bed_raster) {
+    raster_rows("bed", bed->raster.path, *terrain.bed_raster, terrain.domain);
+    any = true;
+  }
+  if (scene.manning_n && terrain.roughness) {
+    raster_rows("Manning's n", std::get<scenario::RasterSpec>(*scene.manning_n).path,
+                *terrain.roughness, terrain.domain);
+    any = true;
+  }
+  for (std::size_t i = 0; i < scene.water.size() && i < terrain.water_depth.size(); ++i) {
+    const auto* depth = std::get_if<scenario::DepthRaster>(&scene.water[i].depth);
+    if (!depth || !terrain.water_depth[i]) continue;
+    raster_rows(fmt::format("water {} depth", i), depth->raster.path, *terrain.water_depth[i],
+                terrain.domain);
+    any = true;
+  }
+  if (!any) row("none", "the scene reads no raster");
+}
+
+// ---------------------------------------------------------------------------------------------
+// What inflows will add over the run
+
+struct InflowOutlook {
+  double volume_m3 = 0.0;     // let in by the end time: the hydrograph's integral
+  double particles = 0.0;     // that volume in particles of spacing^2 x depth
+  std::string depth_assumed;  // how the depth was taken, for the report
+};
+
+InflowOutlook inflow_outlook(const scenario::Inflow& in, double end_time_s, double gravity) {
+  const auto* table = std::get_if<std::vector<std::array<double, 2>>>(&in.hydrograph);
+  const boundaries::Hydrograph q(
+      table ? *table : io::read_hydrograph_csv(std::get<std::filesystem::path>(in.hydrograph)));
+  InflowOutlook out;
+  out.volume_m3 = q.volume(0.0, end_time_s);
+  const double cell_m2 = in.spacing_m * in.spacing_m;
+  if (in.depth_m) {
+    out.particles = out.volume_m3 / (cell_m2 * *in.depth_m);
+    out.depth_assumed = fmt::format("depth {} m", num(*in.depth_m));
+    return out;
+  }
+  // Without a depth the line lets water in at the critical depth of the discharge of the
+  // moment, so each bit of volume Q dt makes particles of l^2 h_c(Q): summed over the run.
+  const auto& [a, b] = in.line;
+  const double length_m = std::hypot(b[0] - a[0], b[1] - a[1]);
+  constexpr int kPieces = 2000;
+  const double dt_s = end_time_s / kPieces;
+  for (int k = 0; k < kPieces; ++k) {
+    const double discharge = q.discharge((k + 0.5) * dt_s);
+    if (discharge <= 0.0) continue;
+    out.particles +=
+        discharge * dt_s / (cell_m2 * boundaries::critical_depth_m(discharge / length_m, gravity));
+  }
+  out.depth_assumed = out.particles > 0.0
+                          ? fmt::format("no depth given: the critical depth, {} m on average",
+                                        num(out.volume_m3 / (out.particles * cell_m2)))
+                          : "no depth given";
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Time step and timing
+
+// Steps to the end time at a constant dt: a run also lands on every output time, which may
+// split the step across each one before the end in two.
+double steps_to_end(const scenario::Scenario& scene, double dt_s) {
+  const std::size_t times = scene.output.times_s.size();
+  return std::ceil(scene.end_time_s / dt_s) + static_cast<double>(times > 0 ? times - 1 : 0);
+}
+
+void time_step_section(const scenario::Scenario& scene, double dt_s, const std::string& note) {
+  heading("Time step");
+  row("first stable step", fmt::format("{:.9g} s", dt_s));
+  row("steps to the end", fmt::format("{} at the first step's dt, output times landed on{}",
+                                      count(steps_to_end(scene, dt_s)), note));
+}
+
+struct Timing {
+  std::size_t steps = 0;      // timed
+  double particle_steps = 0;  // over the timed steps
+  double seconds = 0.0;
+  double dry_time_s = 0.0;  // simulated time stepped, untimed, before any particle existed
+};
+
+// `step` takes one step and returns the fluid particles it stepped; `fluid` counts them now.
+template <class Step, class Fluid, class Now>
+Timing time_steps(double end_time_s, const Step& step, const Fluid& fluid, const Now& now_s) {
+  Timing t;
+  const auto start = Clock::now();
+  // A scene that starts dry has nothing to time until an inflow lets water in; those steps
+  // cost next to nothing and count against the budget too.
+  while (fluid() == 0 && now_s() < end_time_s && seconds_since(start) < kTimingBudgetS) step();
+  t.dry_time_s = now_s();
+  const auto timed = Clock::now();
+  while (t.steps < kTimedSteps && fluid() > 0 && now_s() < end_time_s &&
+         seconds_since(start) < kTimingBudgetS) {
+    t.particle_steps += static_cast<double>(step());
+    ++t.steps;
+  }
+  t.seconds = seconds_since(timed);
+  return t;
+}
+
+// The run's wall time: the particle-steps of `steps` steps, the count going linearly from the
+// start's to the end's, at the timed rate; plus `per_step_output_s` a step. One line with its
+// assumptions, then what it leaves out.
+void estimate_section(double steps, double dt_s, const Timing& timing, double start_particles,
+                      double end_particles, double per_step_output_s, const std::string& caveat,
+                      bool lower_bound = false) {
+  const int threads = omp_get_max_threads();
+  const bool measured = timing.particle_steps > 0.0 && timing.seconds > 0.0;
+  const double rate = measured ? timing.particle_steps / timing.seconds
+                               : kAssumedRatePerThread * static_cast<double>(threads);
+  const double output_s = steps * per_step_output_s;
+  const double total_s = steps * 0.5 * (start_particles + end_particles) / rate + output_s;
+  heading("Wall-time estimate");
+  std::printf(
+      "  %s %s on %d thread%s (%s %.2e particle-steps/s; %s steps at dt = %s s; "
+      "%s -> %s particles)\n",
+      lower_bound ? "at least about" : "about", duration(total_s).c_str(), threads,
+      threads == 1 ? "" : "s",
+      measured ? fmt::format("{} steps timed:", timing.steps).c_str()
+               : "no particle to time: an assumed",
+      rate, count(steps).c_str(), num(dt_s).c_str(), count(start_particles).c_str(),
+      count(end_particles).c_str());
+  if (per_step_output_s > 0.0) {
+    std::printf("  of which %s for the flood statistics, gridded every step (%s a step)\n",
+                duration(output_s).c_str(), duration(per_step_output_s).c_str());
+  }
+  if (timing.dry_time_s > 0.0) {
+    std::printf("  The steps to t = %s s, before the first particle came in, were not timed.\n",
+                num(timing.dry_time_s).c_str());
+  }
+  std::printf("  This is an estimate: %s. Reading the scene and writing maps add to it.\n",
+              caveat.c_str());
+  if (lower_bound) {
+    // Measured, not a correction applied: the shipped flood cases (docs/outputs.md, "Check").
+    std::printf(
+        "  A flood that speeds up shortens the time step: the shipped valley floods ran 3.7 "
+        "and 8 times their estimate.\n");
+  }
+}
+
+void memory_section(const scenario::MemoryNeed& need, const std::string& not_counted) {
+  // The scene's build has already refused a need beyond the usable memory, as in a run.
+  const auto usable = static_cast<double>(scenario::usable_memory_bytes());
+  std::string what = count(need.particles) + " particles";
+  if (need.peak_particles > need.particles) what += ", " + count(need.peak_particles) + " at peak";
+  heading("Memory");
+  row("need", fmt::format("about {} ({}, {} grid cells{})", scenario::bytes_text(need.bytes()),
+                          what, count(need.grid_cells), not_counted));
+  row("usable", usable == 0.0
+                    ? "unknown (not checked)"
+                    : fmt::format("{} ({:.2g} % of it needed)", scenario::bytes_text(usable),
+                                  100.0 * need.bytes() / usable));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shallow water
+
+// The particles at the start and what the scene does to their number; returns the particles
+// inflows will add by the end time.
+double particles_section(const scenario::Scenario& scene, swe::Simulation& sim) {
+  heading("Particles");
+  row("fluid at the start",
+      fmt::format("{} ({} m3 of water)", count(double(sim.particles().fluid_count())),
+                  num(sim.fluid_volume())));
+  double spacing = 0.0;
+  for (const auto& w : scene.water) spacing = std::max(spacing, w.spacing_m);
+  if (!scene.water.empty()) row("spacing", num(spacing) + " m (the coarsest water body's)");
+  double inflow_particles = 0.0;
+  row("inflows", scene.inflows.empty() ? "none" : count(double(scene.inflows.size())));
+  for (const auto& in : scene.inflows) {
+    const InflowOutlook o = inflow_outlook(in, scene.end_time_s, scene.numerics.gravity_m_s2);
+    inflow_particles += o.particles;
+    row("  " + in.name,
+        fmt::format("spacing {} m; {} m3 by the end time, about {} particles ({})",
+                    num(in.spacing_m), num(o.volume_m3), count(o.particles), o.depth_assumed));
+  }
+  const auto& split = scene.splitting;
+  row("splitting", !split ? "off"
+                   : split->max_particles > 0
+                       ? "on, capped at " + count(double(split->max_particles))
+                       : "on, no cap");
+  row("merging", scene.merging ? "on" : "off");
+  std::size_t segments = 0;
+  for (const auto& w : scene.walls) segments += w.polyline.size() - 1;
+  row("walls", scene.walls.empty()
+                   ? "none"
+                   : fmt::format("{} polyline{}, {} segments; {} ghost particles mirrored now",
+                                 scene.walls.size(), scene.walls.size() == 1 ? "" : "s", segments,
+                                 count(double(sim.particles().ghost_count()))));
+  std::string effects;
+  for (const auto& e : sim.effect_times()) effects += (effects.empty() ? "" : ", ") + e.name;
+  row("effects", effects.empty() ? "none" : effects);
+  return inflow_particles;
+}
+
+// What a run does every step besides the step: grid the state and add it to the flood
+// statistics (maps and series are written at their times only, and left out). Timed on the
+// state the timed steps reached, the faster of two (the first pays for allocations); the
+// gridding, which visits each particle's cells, scaled to `mean_particles`.
+double statistics_step_s(const scenario::Scenario& scene, swe::Simulation& sim,
+                         const swe::RegularGrid& grid, double mean_particles) {
+  sim.refresh();
+  maps::FloodStatistics statistics(
+      grid.nx * grid.ny,
+      {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use});
+  double gridding_s = std::numeric_limits<double>::infinity(), update_s = gridding_s;
+  for (int k = 0; k < 2; ++k) {
+    auto started = Clock::now();
+    const auto f = swe::fields_on_grid(sim.particles(), sim.kernel(), grid);
+    gridding_s = std::min(gridding_s, seconds_since(started));
+    started = Clock::now();
+    statistics.update(sim.time() + k, f.depth, f.u, f.v);
+    update_s = std::min(update_s, seconds_since(started));
+  }
+  const double now = static_cast<double>(sim.particles().fluid_count());
+  return update_s + gridding_s * (now > 0.0 ? std::max(1.0, mean_particles / now) : 1.0);
+}
+
+void check_swe(const scenario::Scenario& scene, const Options& options) {
+  auto built = scenario::build(scene);  // refuses a scene that does not fit in memory
+  auto& sim = built.simulation;
+  const auto grid = scenario::output_grid(scene, built.terrain);
+  const bool seed = scene.numerics.scheme == swe::SchemeKind::seed;
+  scene_section(scene, options, grid,
+                fmt::format("shallow water, the {} scheme", seed ? "seed" : "conservative"));
+  domain_section(scene, built.terrain);
+  rasters_section(scene, built.terrain);
+
+  const double dt_s = sim.stable_time_step();  // refreshes: ghosts and depths in place
+  const double start = static_cast<double>(sim.particles().fluid_count());
+  const double inflow_particles = particles_section(scene, sim);
+  // The need counts the particles at the start; those inflows let in come on top.
+  memory_section(scenario::swe_memory_need(scene, built.terrain),
+                 inflow_particles > 0.0 ? "; not counting the " + count(inflow_particles) +
+                                              " particles inflows may add"
+                                        : "");
+  time_step_section(scene, dt_s,
+                    scene.inflows.empty() ? "" : " (a lower bound: inflows add faster water)");
+
+  Timing timing;
+  try {
+    timing = time_steps(
+        scene.end_time_s,
+        [&] {
+          const std::size_t before = sim.particle_steps();
+          sim.step_towards(scene.end_time_s);
+          return sim.particle_steps() - before;
+        },
+        [&] { return sim.particles().fluid_count(); }, [&] { return sim.time(); });
+  } catch (const swe::SimulationError&) {
+    std::printf("\n  The timed steps broke down at t = %s s: the run would too.\n",
+                num(sim.time()).c_str());
+    throw;
+  }
+  // The count the inflows reach, from their volume over the run.
+  const double end = std::max(start + inflow_particles, double(sim.particles().fluid_count()));
+  std::string caveat = "the time step changes as the water moves";
+  if (scene.splitting) caveat += ", and splitting may add particles beyond these";
+  if (!scene.inflows.empty()) caveat += "; the particles inflows add are counted from their volume";
+  estimate_section(steps_to_end(scene, dt_s), dt_s, timing, start, end,
+                   statistics_step_s(scene, sim, grid, 0.5 * (start + end)), caveat,
+                   !scene.inflows.empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Navier-Stokes
+
+template <int Dim>
+void check_ns(const scenario::Scenario& scene, const Options& options) {
+  const auto terrain = scenario::read_terrain(scene);
+  const auto tank = scenario::ns_tank<Dim>(scene);
+  auto sim = scenario::make_ns_simulation<Dim>(scene);  // refuses what does not fit in memory
+  const auto grid = scenario::output_grid(scene, terrain);
+  scene_section(scene, options, grid,
+                Dim == 2 ? "Navier-Stokes, 2D x-z section" : "Navier-Stokes, 3D");
+  row("series table", ns_series_path(scene.output.path).string());
+  domain_section(scene, terrain);
+  rasters_section(scene, terrain);
+
+  heading("Tank and particles");
+  const auto& in = tank.interior;
+  std::string size = num(in.upper[0] - in.lower[0]) + " m long";
+  if constexpr (Dim == 3) size += ", " + num(in.upper[1] - in.lower[1]) + " m wide";
+  row("interior", fmt::format("{}, {} m high; spacing {} m, {} solid layers, {} water boxes", size,
+                              num(in.upper[Dim - 1] - in.lower[Dim - 1]), num(tank.spacing_m),
+                              tank.solid_layers, tank.water.size()));
+  const auto& p = sim.particles();
+  const double start = static_cast<double>(p.fluid);
+  row("fluid particles", count(start));
+  row("wall and dummy",
+      fmt::format("{} wall, {} dummy", count(double(p.wall)), count(double(p.dummy))));
+  memory_section(scenario::ns_memory_need<Dim>(scene, tank), "");
+  const double dt_s = sim.stable_time_step();
+  time_step_section(scene, dt_s, "");
+
+  const auto timing = time_steps(
+      scene.end_time_s,
+      [&] {
+        const std::size_t fluid = sim.particles().fluid;
+        sim.advance(std::min(sim.stable_time_step(), scene.end_time_s - sim.time()));
+        return fluid;
+      },
+      [&] { return sim.particles().fluid; }, [&] { return sim.time(); });
+  estimate_section(steps_to_end(scene, dt_s), dt_s, timing, start, start, 0.0,
+                   "the time step shrinks as the water speeds up, and the Poisson solve takes "
+                   "more iterations as the flow develops");
+}
+
+}  // namespace
+
+void check(const Options& options, const std::string& command_line) {
+  // What run does before its first step, in the same order: the same scene is refused with
+  // the same message and exit status.
+  auto scene = scenario::load(options.scenario);
+  if (options.output) scene.output.path = output_option(*options.output);
+  check_output_target(scene.output.path);
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  (void)run_context(options, command_line, scene);
+
+  if (scene.model == scenario::Model::ns) {
+    if (scene.dimension == 2) {
+      check_ns<2>(scene, options);
+    } else {
+      check_ns<3>(scene, options);
+    }
+  } else {
+    check_swe(scene, options);
+  }
+  std::printf("\ncheck: OK — the scene can run\n");
+  std::fflush(stdout);
+}
+
+}  // namespace swemps::cli

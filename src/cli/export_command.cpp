@@ -1,0 +1,38 @@
+// `swe-mps export`: a finished result's GeoTIFF maps and gauge CSV, beside it.
+
+#include "swemps/cli/export_command.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+
+#include "swemps/cli/run_command.hpp"
+#include "swemps/io/flood_products.hpp"
+
+namespace swemps::cli {
+
+void export_products(const Options& options) {
+  const std::filesystem::path& result = options.scenario;
+  std::filesystem::path prefix = options.output.value_or(result);
+  if (!options.output) prefix.replace_extension();
+  const io::TiffLayout layout =
+      options.format == "geotiff" ? io::TiffLayout::plain : io::TiffLayout::cloud_optimised;
+  std::vector<std::filesystem::path> maps;
+  try {
+    maps = io::export_maps(result, options.maps, layout, prefix);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  } catch (const std::runtime_error& e) {
+    throw OutputError(e.what());
+  }
+  for (const auto& m : maps) spdlog::info("wrote {}", m.string());
+  std::filesystem::path csv = prefix;
+  csv += "_gauges.csv";
+  try {
+    if (io::export_gauges(result, csv)) spdlog::info("wrote {}", csv.string());
+  } catch (const std::runtime_error& e) {
+    throw OutputError(e.what());
+  }
+}
+
+}  // namespace swemps::cli

@@ -1,0 +1,299 @@
+#include "swemps/io/flood_products.hpp"
+
+#include <netcdf.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <system_error>
+
+#include "netcdf_layout.hpp"
+#include "swemps/maps/hazard.hpp"
+
+namespace swemps::io {
+
+using namespace netcdf;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Reads what the products need from a result file, read-only.
+class ResultReader {
+ public:
+  explicit ResultReader(const std::filesystem::path& file) : file_(file) {
+    const int status = nc_open(file.c_str(), NC_NOWRITE, &ncid_);
+    if (status != NC_NOERR) {
+      ncid_ = -1;
+      throw std::runtime_error("cannot read the result " + quoted(file) + ": " +
+                               nc_strerror(status));
+    }
+  }
+  ~ResultReader() {
+    if (ncid_ >= 0) nc_close(ncid_);
+  }
+  ResultReader(const ResultReader&) = delete;
+  ResultReader& operator=(const ResultReader&) = delete;
+
+  bool has(const char* name) const {
+    int id = -1;
+    return nc_inq_varid(ncid_, name, &id) == NC_NOERR;
+  }
+
+  int variable(const char* name) const {
+    int id = -1;
+    if (nc_inq_varid(ncid_, name, &id) != NC_NOERR) {
+      throw std::runtime_error("the result " + quoted(file_) + " has no variable " + name +
+                               " (is it a swe-mps result of a run that completed?)");
+    }
+    return id;
+  }
+
+  std::size_t length(int varid) const {
+    int ndims = 0;
+    ok(nc_inq_varndims(ncid_, varid, &ndims), "read the dimensions of a variable");
+    std::vector<int> dims(static_cast<std::size_t>(ndims));
+    ok(nc_inq_vardimid(ncid_, varid, dims.data()), "read the dimensions of a variable");
+    std::size_t n = 1;
+    for (const int d : dims) {
+      std::size_t len = 0;
+      ok(nc_inq_dimlen(ncid_, d, &len), "read a dimension's length");
+      n *= len;
+    }
+    return n;
+  }
+
+  // The whole variable as doubles, its fill value as NaN.
+  std::vector<double> values(const char* name) const {
+    const int id = variable(name);
+    std::vector<double> out(length(id));
+    ok(nc_get_var_double(ncid_, id, out.data()), std::string("read variable ") + name);
+    double fill = kNaN;
+    if (nc_get_att_double(ncid_, id, "_FillValue", &fill) == NC_NOERR) {
+      for (double& v : out) {
+        if (v == fill) v = kNaN;
+      }
+    }
+    return out;
+  }
+
+  std::vector<std::string> strings(const char* name) const {
+    const int id = variable(name);
+    std::vector<char*> raw(length(id));
+    ok(nc_get_var_string(ncid_, id, raw.data()), std::string("read variable ") + name);
+    std::vector<std::string> out(raw.begin(), raw.end());
+    nc_free_string(raw.size(), raw.data());
+    return out;
+  }
+
+  // A text attribute of a variable (NC_GLOBAL for the file's); empty when absent.
+  std::string text(int varid, const char* name) const {
+    std::size_t n = 0;
+    if (nc_inq_attlen(ncid_, varid, name, &n) != NC_NOERR) return {};
+    nc_type type = NC_NAT;
+    ok(nc_inq_atttype(ncid_, varid, name, &type), std::string("read attribute ") + name);
+    if (type != NC_CHAR) return {};
+    std::string value(n, '\0');
+    ok(nc_get_att_text(ncid_, varid, name, value.data()), std::string("read attribute ") + name);
+    return value;
+  }
+
+  // The grid of the maps: cell centres from x and y, the CRS from the grid mapping.
+  Grid grid() const {
+    const std::vector<double> x = values("x"), y = values("y");
+    if (x.empty() || y.empty()) {
+      throw std::runtime_error("the result " + quoted(file_) + " has an empty grid");
+    }
+    Grid g;
+    g.x0 = x.front();
+    g.y0 = y.front();
+    g.nx = x.size();
+    g.ny = y.size();
+    // One cell along an axis has no spacing of its own: it takes the other axis's.
+    g.dx = g.nx > 1 ? x[1] - x[0] : (g.ny > 1 ? y[1] - y[0] : 1.0);
+    g.dy = g.ny > 1 ? y[1] - y[0] : g.dx;
+    if (has("crs")) g.crs_wkt = text(variable("crs"), "crs_wkt");
+    return g;
+  }
+
+ private:
+  void ok(int status, const std::string& purpose) const { check(status, purpose, file_); }
+
+  const std::filesystem::path& file_;
+  int ncid_ = -1;
+};
+
+// The names and colours of the hazard classes, light to dark as the hazard rises.
+RasterBand uk_class_band() {
+  using enum maps::UkHazardClass;
+  RasterBand band{
+      "flood hazard rating class (Defra/Environment Agency FD2320/FD2321)", "1", {}, {}};
+  for (const auto k : {low, moderate, significant, extreme}) {
+    band.class_names.emplace_back(maps::name(k));
+  }
+  band.class_colours = {{255, 255, 178}, {254, 204, 92}, {253, 141, 60}, {227, 26, 28}};
+  return band;
+}
+
+RasterBand aidr_class_band() {
+  using enum maps::AidrHazard;
+  RasterBand band{"flood hazard vulnerability class H1-H6 (AIDR Guideline 7-3)", "1", {}, {}};
+  for (const auto k : {h1, h2, h3, h4, h5, h6}) band.class_names.emplace_back(maps::name(k));
+  band.class_colours = {{255, 255, 204}, {255, 237, 160}, {254, 217, 118},
+                        {253, 141, 60},  {227, 26, 28},   {128, 0, 38}};
+  return band;
+}
+
+// "0.3" for 0.3 m: the threshold as a file name part.
+std::string threshold_text(double threshold_m) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", threshold_m);
+  return text;
+}
+
+// The gauge's name as a column name that spreadsheet and data-frame readers take as it is.
+std::string column_part(const std::string& name) {
+  std::string out = name;
+  for (char& c : out) {
+    const auto u = static_cast<unsigned char>(c);
+    if (!std::isalnum(u) && c != '_' && c != '-' && c != '.') c = '_';
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> export_maps(const std::filesystem::path& result,
+                                               const std::vector<std::string>& names,
+                                               TiffLayout layout,
+                                               const std::filesystem::path& prefix) {
+  const auto& known = exportable_maps();
+  for (const auto& n : names) {
+    if (std::find(known.begin(), known.end(), n) == known.end()) {
+      std::string list;
+      for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw std::invalid_argument("'" + n +
+                                  "' is not a map that can be exported (the maps: " + list + ")");
+    }
+  }
+  const ResultReader in(result);
+  in.variable("max_depth");  // a result without its summary: a run that stopped early
+  const Grid grid = in.grid();
+  const std::size_t cells = grid.nx * grid.ny;
+  std::map<std::string, std::string> metadata{{"TIFFTAG_SOFTWARE", in.text(NC_GLOBAL, "program")},
+                                              {"source", result.filename().string()}};
+  for (const char* key :
+       {"title", "command_line", "run_started", "time_coverage_start", "run_status"}) {
+    if (const std::string v = in.text(NC_GLOBAL, key); !v.empty()) metadata[key] = v;
+  }
+  std::erase_if(metadata, [](const auto& kv) { return kv.second.empty(); });
+
+  std::vector<std::filesystem::path> written;
+  const auto write = [&](const std::string& file_part, std::span<const double> values,
+                         const RasterBand& band) {
+    std::filesystem::path file = prefix;
+    file += "_" + file_part + ".tif";
+    write_geotiff(file, grid, values, band, layout, metadata);
+    written.push_back(file);
+  };
+  for (const std::string& name : names.empty() ? known : names) {
+    if (!in.has(name.c_str())) continue;  // bed_elevation of a flat scene
+    const int id = in.variable(name.c_str());
+    std::vector<double> values = in.values(name.c_str());
+    if (name == "hazard_class_uk" || name == "hazard_class_aidr") {
+      // 0, never wet, is no class: nodata in the raster, as in a GIS flood layer.
+      for (double& v : values) {
+        if (v == 0.0) v = kNaN;
+      }
+      write(name, values, name == "hazard_class_uk" ? uk_class_band() : aidr_class_band());
+      continue;
+    }
+    const RasterBand band{in.text(id, "long_name"), in.text(id, "units"), {}, {}};
+    if (values.size() == cells) {
+      write(name, values, band);
+      continue;
+    }
+    // One map per depth threshold.
+    const std::vector<double> thresholds = in.values("depth_threshold");
+    if (values.size() != thresholds.size() * cells) {
+      throw std::runtime_error("the result " + quoted(result) + " has " +
+                               std::to_string(values.size()) + " values of " + name +
+                               ", not one map per depth threshold");
+    }
+    for (std::size_t j = 0; j < thresholds.size(); ++j) {
+      RasterBand layer = band;
+      layer.description += ", depth threshold " + threshold_text(thresholds[j]) + " m";
+      write(name + "_" + threshold_text(thresholds[j]) + "m",
+            std::span<const double>(values).subspan(j * cells, cells), layer);
+    }
+  }
+  return written;
+}
+
+bool export_gauges(const std::filesystem::path& result, const std::filesystem::path& csv) {
+  const ResultReader in(result);
+  if (!in.has("gauge_name")) return false;
+  const std::vector<std::string> gauges = in.strings("gauge_name");
+  const std::vector<double> time = in.values("series_time");
+  const std::size_t n = gauges.size();
+  const char* const series[] = {"gauge_depth", "gauge_surface_elevation", "gauge_u", "gauge_v"};
+  const char* const units[] = {"depth_m", "surface_elevation_m", "u_m_s", "v_m_s"};
+  std::vector<std::vector<double>> columns;
+  for (const char* name : series) {
+    // Results of earlier versions have no surface elevation at the gauges.
+    columns.push_back(in.has(name) ? in.values(name) : std::vector<double>(time.size() * n, kNaN));
+    if (columns.back().size() != time.size() * n) {
+      throw std::runtime_error("the result " + quoted(result) + " has " +
+                               std::to_string(columns.back().size()) + " values of " + name +
+                               " for " + std::to_string(time.size()) + " times and " +
+                               std::to_string(n) + " gauges");
+    }
+  }
+
+  std::filesystem::path partial = csv;
+  partial += ".partial";
+  errno = 0;
+  std::FILE* out = std::fopen(partial.c_str(), "w");
+  if (out == nullptr) {
+    throw std::runtime_error("cannot create " + quoted(partial) + ": " +
+                             (errno != 0 ? std::strerror(errno) : "unknown reason"));
+  }
+  bool good = std::fputs("time_s", out) >= 0;
+  for (const auto& g : gauges) {
+    for (const char* unit : units)
+      good = good && std::fprintf(out, ",%s_%s", column_part(g).c_str(), unit) > 0;
+  }
+  good = good && std::fputc('\n', out) != EOF;
+  for (std::size_t t = 0; t < time.size() && good; ++t) {
+    good = std::fprintf(out, "%.12g", time[t]) > 0;
+    for (std::size_t g = 0; g < n; ++g) {
+      for (const auto& column : columns) {
+        const double v = column[t * n + g];
+        good = good &&
+               (std::isnan(v) ? std::fputc(',', out) != EOF : std::fprintf(out, ",%.12g", v) > 0);
+      }
+    }
+    good = good && std::fputc('\n', out) != EOF;
+  }
+  good = std::fclose(out) == 0 && good;
+  std::error_code ec;
+  if (!good) {
+    std::filesystem::remove(partial, ec);
+    throw std::runtime_error("cannot write " + quoted(partial));
+  }
+  std::filesystem::rename(partial, csv, ec);
+  if (ec) {
+    std::filesystem::remove(partial, ec);
+    throw std::runtime_error("cannot rename " + quoted(partial) + " to " + quoted(csv));
+  }
+  return true;
+}
+
+}  // namespace swemps::io
