@@ -18,8 +18,10 @@ void export_products(const Options& options) {
   const io::TiffLayout layout =
       options.format == "geotiff" ? io::TiffLayout::plain : io::TiffLayout::cloud_optimised;
   std::vector<std::filesystem::path> maps;
+  // "all" is every map, as no list is.
+  const bool all = options.maps.size() == 1 && options.maps.front() == "all";
   try {
-    maps = io::export_maps(result, options.maps, layout, prefix);
+    maps = io::export_maps(result, all ? std::vector<std::string>{} : options.maps, layout, prefix);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   } catch (const std::runtime_error& e) {

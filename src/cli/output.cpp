@@ -21,7 +21,8 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-constexpr const char* kOutputStateLabel = "swe-mps map output";
+// Version 2: the statistics of the flood products (8 maps and 2 a depth threshold, not 5).
+constexpr const char* kOutputStateLabel = "swe-mps map output 2";
 
 // Now, in UTC, as ISO 8601 to the second.
 std::string utc_now() {

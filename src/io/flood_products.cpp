@@ -51,7 +51,7 @@ class ResultReader {
     int id = -1;
     if (nc_inq_varid(ncid_, name, &id) != NC_NOERR) {
       throw std::runtime_error("the result " + quoted(file_) + " has no variable " + name +
-                               " (is it a swe-mps result of a run that completed?)");
+                               " (is it a swe-mps result?)");
     }
     return id;
   }
@@ -133,8 +133,7 @@ class ResultReader {
 // The names and colours of the hazard classes, light to dark as the hazard rises.
 RasterBand uk_class_band() {
   using enum maps::UkHazardClass;
-  RasterBand band{
-      "flood hazard rating class (Defra/Environment Agency FD2320/FD2321)", "1", {}, {}};
+  RasterBand band{"flood hazard rating class (Defra/Environment Agency FD2321/TR1)", "1", {}, {}};
   for (const auto k : {low, moderate, significant, extreme}) {
     band.class_names.emplace_back(maps::name(k));
   }
@@ -184,7 +183,7 @@ std::vector<std::filesystem::path> export_maps(const std::filesystem::path& resu
     }
   }
   const ResultReader in(result);
-  in.variable("max_depth");  // a result without its summary: a run that stopped early
+  in.variable("max_depth");  // every swe-mps result has its summary, even a stopped run's
   const Grid grid = in.grid();
   const std::size_t cells = grid.nx * grid.ny;
   std::map<std::string, std::string> metadata{{"TIFFTAG_SOFTWARE", in.text(NC_GLOBAL, "program")},

@@ -158,10 +158,20 @@ class Definer {
        std::string("write attribute ") + name);
   }
 
-  // A dimension of fixed length, or the one of that name a resumed file already has.
+  // A dimension of fixed length, or the one of that name a resumed file already has, which
+  // must be as long.
   int dimension(const char* name, std::size_t length) const {
     int id = -1;
-    if (nc_inq_dimid(ncid_, name, &id) == NC_NOERR) return id;
+    if (nc_inq_dimid(ncid_, name, &id) == NC_NOERR) {
+      std::size_t found = 0;
+      ok(nc_inq_dimlen(ncid_, id, &found), std::string("read the length of dimension ") + name);
+      if (found != length) {
+        throw std::runtime_error("netCDF: the file " + quoted(file_) + " has " +
+                                 std::to_string(found) + " along " + name + ", this run " +
+                                 std::to_string(length));
+      }
+      return id;
+    }
     ok(nc_def_dim(ncid_, name, length, &id), std::string("define dimension ") + name);
     return id;
   }

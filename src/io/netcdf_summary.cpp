@@ -49,19 +49,18 @@ struct ClassMap {
 
 ClassMap uk_classes(const maps::FloodStatistics& stats) {
   ClassMap m{"hazard_class_uk",
-             "flood hazard rating class (Defra/Environment Agency FD2320)",
+             "flood hazard rating class (Defra/Environment Agency FD2321/TR1)",
              {},
              {0},
              "not_flooded",
              ""};
   const auto rating = stats.max_hazard_rating();
-  const auto arrival = stats.arrival_time();
+  const auto rated = stats.max_hazard_class();  // 1 or more: a wet sample with a velocity
   m.classes.assign(rating.begin(), rating.end());
   for (std::size_t c = 0; c < m.classes.size(); ++c) {
     // The class of the largest rating is the largest class: the classes rise with the rating.
     if (std::isnan(rating[c])) continue;
-    const bool flooded = !std::isnan(arrival[c]);
-    m.classes[c] = flooded ? static_cast<double>(maps::uk_hazard_class(rating[c])) : 0.0;
+    m.classes[c] = rated[c] >= 1.0 ? static_cast<double>(maps::uk_hazard_class(rating[c])) : 0.0;
   }
   using enum maps::UkHazardClass;
   m.flag_meanings += " low moderate significant extreme";
@@ -134,7 +133,7 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
        "time: maximum", velocity_rule},
       {"max_hazard_rating", stats.max_hazard_rating(), "1", nullptr,
        "maximum flood hazard rating HR = d (v + 0.5) + DF over the run (Defra/Environment "
-       "Agency FD2320)",
+       "Agency FD2321/TR1)",
        "time: maximum",
        velocity_rule + "; each sample rated by its own depth and speed; debris factor for " +
            land_use + " land use"}};

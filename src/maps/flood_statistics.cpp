@@ -109,7 +109,8 @@ void FloodStatistics::update(double time_s, std::span<const double> depth,
 
   for (std::size_t i = 0; i < n; ++i) {
     const double h = depth[i];
-    if (std::isnan(h)) continue;
+    // No data; an infinite depth (a broken state, which the run refuses) is none either.
+    if (!std::isfinite(h)) continue;
     const bool first_data = std::isnan(max_depth_[i]);
     if (first_data) {
       // From here on "never" means 0, not "unknown".

@@ -142,8 +142,8 @@ double finite_number(const json& v, const std::string& path, const std::string& 
   return x;
 }
 
-// o[key] as a finite number; a missing key gives `fallback`, or an error when there is none.
 namespace {
+// The record the readers write into on this thread; null: none.
 thread_local DefaultsRecord* current_record = nullptr;
 }  // namespace
 
@@ -174,6 +174,7 @@ void DefaultsRecord::drop(const std::string& path) {
   }
 }
 
+// o[key] as a finite number; a missing key gives `fallback`, or an error when there is none.
 double number(const Object& o, std::string_view key, const std::string& expected,
               std::optional<double> fallback) {
   const json* v = o.find(key);

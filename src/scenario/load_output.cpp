@@ -11,7 +11,7 @@
 
 #include "json_reading.hpp"
 #include "load_sections.hpp"
-#include "swemps/io/flood_products.hpp"
+#include "swemps/maps/flood_statistics.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace swemps::scenario {
@@ -269,7 +269,7 @@ std::string cf_time_units(std::string_view text) {
 std::vector<std::string> read_rasters(const Object& o) {
   const json* v = o.find("rasters");
   if (v == nullptr) return {};
-  const auto& known = io::exportable_maps();
+  const auto& known = maps::summary_map_names();
   const Names choices(known.begin(), known.end());
   const std::string path = o.path("rasters");
   if (v->is_string() && v->get_ref<const std::string&>() == "all") return known;

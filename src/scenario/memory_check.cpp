@@ -50,7 +50,7 @@ void keep_largest(MemoryNeed& need, Share& largest, Share candidate) {
 Share grid_share(const Scenario& scene, const Terrain& terrain, double& cells) {
   const swe::RegularGrid grid = output_grid(scene, terrain);
   cells = static_cast<double>(grid.nx) * static_cast<double>(grid.ny);
-  return {cells * kBytesPerGridCell, "/output/grid",
+  return {cells * bytes_per_grid_cell(scene.output.depth_thresholds_m.size()), "/output/grid",
           count_text(cells) + " cells of the output grid (" + short_number(grid.dx) + " m x " +
               short_number(grid.dy) + " m)"};
 }
@@ -99,6 +99,7 @@ std::string bytes_text(double bytes) {
 
 MemoryNeed swe_memory_need(const Scenario& scene, const Terrain& terrain) {
   MemoryNeed need;
+  need.bytes_per_cell = bytes_per_grid_cell(scene.output.depth_thresholds_m.size());
   Share largest;
   for (std::size_t i = 0; i < scene.water.size(); ++i) {
     const WaterBody& body = scene.water[i];
@@ -125,6 +126,7 @@ MemoryNeed swe_memory_need(const Scenario& scene, const Terrain& terrain) {
 template <int Dim>
 MemoryNeed ns_memory_need(const Scenario& scene, const ns::TankSpec<Dim>& tank) {
   MemoryNeed need;
+  need.bytes_per_cell = bytes_per_grid_cell(scene.output.depth_thresholds_m.size());
   // Nodes along each axis: the interior's, and with the solid layers behind the walls (on both
   // sides across, below only along the vertical: the tank has no lid).
   double interior_nodes = 1.0, box_nodes = 1.0;
@@ -182,7 +184,7 @@ void check_fits_in_memory(const MemoryNeed& need, std::uint64_t usable_bytes) {
       need.json_path,
       "a scene of about " + particles + " and " + count_text(need.grid_cells) +
           " output grid cells, needing about " + bytes_text(need.bytes()) + " at " +
-          whole(kBytesPerParticle) + " bytes per particle and " + whole(kBytesPerGridCell) +
+          whole(kBytesPerParticle) + " bytes per particle and " + whole(need.bytes_per_cell) +
           " per cell; most of it for " + need.largest_share,
       "a scene that fits in the " + bytes_text(static_cast<double>(usable_bytes)) +
           " of memory swe-mps may use here (a coarser spacing, less water or a coarser output "

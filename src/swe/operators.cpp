@@ -358,6 +358,7 @@ void scatter_onto_grid(const SweParticles& p, const ParticleKernel& w, const Reg
                              std::size_t count) {
     const double lo = std::ceil((centre - support - origin) / spacing);
     const double hi = std::floor((centre + support - origin) / spacing);
+    if (!(lo <= hi)) return std::pair<long, long>{0, -1};  // none, or NaN (nothing to cast)
     const double last = static_cast<double>(count) - 1.0;
     return std::pair<long, long>{static_cast<long>(std::clamp(lo, 0.0, last + 1.0)),
                                  static_cast<long>(std::clamp(hi, -1.0, last))};

@@ -197,6 +197,13 @@ TEST_CASE("export writes a finished result's maps as GeoTIFF, and refuses what i
   CHECK(all.status == 0);
   CHECK(fs::exists(dir / "ritter_hazard_class_uk.tif"));
   CHECK(fs::exists(dir / "ritter_max_depth_speed2.tif"));
+  // "all", as the help offers it, is every map too.
+  const auto named_all =
+      run(cli + " export " + out.string() + " -q --maps all -o " + (dir / "every").string());
+  INFO(named_all.output);
+  CHECK(named_all.status == 0);
+  CHECK(fs::exists(dir / "every_hazard_class_aidr.tif"));
+  CHECK(fs::exists(dir / "every_inundation_duration_1m.tif"));
 
   const auto unknown = run(cli + " export " + out.string() + " --maps max_dept");
   CHECK(unknown.status == 2);

@@ -152,6 +152,13 @@ void require_same_end(const fs::path& a, const fs::path& b) {
   }
   // The maps were written (depth is time x y x, read whole).
   CHECK(!fa.whole("depth").empty());
+  // The flood statistics went on from the checkpoint's as if never stopped.
+  for (const char* map :
+       {"max_depth", "time_of_max_depth", "max_speed", "max_hazard_rating", "arrival_time",
+        "inundation_duration", "hazard_class_uk", "hazard_class_aidr"}) {
+    INFO(map);
+    CHECK(fa.whole(map) == fb.whole(map));
+  }
 }
 
 // Starts swe-mps with `args` (output to `log`), without waiting for it.

@@ -192,6 +192,14 @@ TEST_CASE("FloodStatistics rejects bad input and stays unchanged", "[maps][stati
   CHECK(stats.samples() == 1);
   CHECK(stats.last_time() == 5.0);
   CHECK(stats.duration_above()[0] == 0.0);
+
+  // An infinite depth is no data, as NaN is: nothing throws halfway through the cells.
+  FloodStatistics other(2, {0.01});
+  const std::vector<double> infinite{std::numeric_limits<double>::infinity(), 1.0};
+  other.update(1.0, infinite, two, two);
+  CHECK(std::isnan(other.max_depth()[0]));
+  CHECK(other.max_depth()[1] == 1.0);
+  CHECK(other.samples() == 1);
 }
 
 TEST_CASE("FloodStatistics matches a reference that keeps the whole history",
@@ -243,4 +251,19 @@ TEST_CASE("FloodStatistics matches a reference that keeps the whole history",
       CHECK(same(stats.duration_above(j)[i], r.duration[j]));
     }
   }
+}
+
+TEST_CASE("FloodStatistics rates each sample by its own depth and speed", "[maps][statistics]") {
+  // docs/outputs.md, "Why the maximum hazard is not the hazard of the maximum depth and
+  // speed": a pasture cell sees a fast shallow front (0.2 m at 1.4 m/s: HR 0.38, H1), then
+  // deep slow ponding (1 m at 0.2 m/s: HR = 1 x 0.7 + 0.5 = 1.2, H3). The maxima combined
+  // (1 m at 1.4 m/s) would give HR 2.4 and H5.
+  FloodStatistics stats(1, {0.01, {}, LandUse::pasture_arable});
+  stats.update(0.0, std::vector{0.2}, std::vector{1.4}, std::vector{0.0});
+  stats.update(60.0, std::vector{1.0}, std::vector{0.2}, std::vector{0.0});
+  CHECK(stats.max_depth()[0] == 1.0);
+  CHECK(stats.max_speed()[0] == Approx(1.4));
+  CHECK(stats.max_hazard_rating()[0] == Approx(1.2));
+  CHECK(stats.max_hazard_class()[0] == 3.0);
+  CHECK(swemps::maps::uk_hazard_rating(1.0, 1.4, LandUse::pasture_arable) == Approx(2.4));
 }

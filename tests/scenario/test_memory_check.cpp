@@ -52,7 +52,7 @@ TEST_CASE("a scene's memory is counted from its water, spacing and grid", "[scen
   CHECK(need.peak_particles == need.particles);
   CHECK(need.grid_cells == 160.0);
   CHECK(need.bytes() == Approx(1050.0 * swemps::scenario::kBytesPerParticle +
-                               160.0 * swemps::scenario::kBytesPerGridCell));
+                               160.0 * swemps::scenario::bytes_per_grid_cell(4)));
   // The first body asks for most: its spacing is the key to change.
   CHECK(need.json_path == "/water/0/spacing");
   CHECK_THAT(need.largest_share, Contains("1000 particles of /water/0 at a spacing of 0.1 m"));
@@ -79,7 +79,7 @@ TEST_CASE("a scene that needs more than the machine has is refused with the numb
     CHECK(e.json_path() == "/water/0/spacing");
     const std::string message = e.what();
     CHECK_THAT(message, Contains("about 1050 particles (2100 with splitting's headroom)"));
-    CHECK_THAT(message, Contains("160 output grid cells, needing about 2.14 MB"));
+    CHECK_THAT(message, Contains("160 output grid cells, needing about 2.13 MB"));
     CHECK_THAT(message, Contains("fits in the 1.07 MB of memory swe-mps may use here"));
   }
 }

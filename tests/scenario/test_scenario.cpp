@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "../support/broken_scenes.hpp"
-#include "swemps/io/flood_products.hpp"
+#include "swemps/maps/flood_statistics.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
@@ -1011,7 +1011,7 @@ TEST_CASE("flood products arrive as given", "[scenario]") {
     }));
     CHECK(s.output.depth_thresholds_m == std::vector<double>{0.5, 1.0});
     CHECK(s.output.start_time_units == "seconds since 2000-02-29 00:00:00");
-    CHECK(s.output.rasters == swemps::io::exportable_maps());
+    CHECK(s.output.rasters == swemps::maps::summary_map_names());
   }
   SECTION("UTC") {
     const auto s = parse_text(edited([](json& j) {

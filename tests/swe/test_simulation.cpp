@@ -329,3 +329,26 @@ TEST_CASE("the gridded fields are the point sums at the cell centres, on any num
   CHECK(wet > 1000);
   CHECK(dry > 1000);
 }
+
+TEST_CASE("gridding one row, or a grid no particle reaches, on any number of threads", "[swe]") {
+  auto scene = scenario::load(std::string(SWEMPS_SOURCE_DIR) + "/cases/ritter/scenario.json");
+  auto sim = scenario::make_simulation(scene);
+  sim.refresh();
+  const auto& p = sim.particles();
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  // One row across the reservoir: fewer rows than threads.
+  const swe::RegularGrid row{0.01, 0.5, 0.02, 0.02, 500, 1};
+  const auto one_row = swe::fields_on_grid(p, sim.kernel(), row);
+  // Far from the water: every cell dry.
+  const swe::RegularGrid far{1000.0, 1000.0, 0.5, 0.5, 20, 10};
+  const auto dry = swe::fields_on_grid(p, sim.kernel(), far);
+  omp_set_num_threads(before);
+  for (std::size_t i = 0; i < row.nx; ++i) {
+    const auto at = swe::fields_at(p, sim.kernel(), row.x0 + static_cast<double>(i) * row.dx, 0.5);
+    CHECK(one_row.depth[i] == Approx(at.depth_m).epsilon(1e-12).margin(1e-15));
+  }
+  CHECK(one_row.depth[100] == Approx(0.25).epsilon(0.05));  // x = 2.01 m, in the reservoir
+  for (const double d : dry.depth) CHECK(d == 0.0);
+  for (const double u : dry.u) CHECK(std::isnan(u));
+}

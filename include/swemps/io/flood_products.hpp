@@ -9,29 +9,19 @@
 #include <vector>
 
 #include "swemps/io/geotiff_writer.hpp"
+#include "swemps/maps/flood_statistics.hpp"
 
 namespace swemps::io {
 
-// The maps a result can be exported as, by name: the whole-run maps of the netCDF file
-// (max_depth, time_of_max_depth, max_surface_elevation, max_speed, max_depth_speed,
-// max_depth_speed2, max_hazard_rating, arrival_time, inundation_duration, hazard_class_uk,
-// hazard_class_aidr) and bed_elevation. arrival_time and inundation_duration give one file
-// per depth threshold. Inline: the scene reader checks names against it without linking
-// the writers.
-inline const std::vector<std::string>& exportable_maps() {
-  static const std::vector<std::string> names{
-      "max_depth",           "time_of_max_depth", "max_surface_elevation", "max_speed",
-      "max_depth_speed",     "max_depth_speed2",  "max_hazard_rating",     "arrival_time",
-      "inundation_duration", "hazard_class_uk",   "hazard_class_aidr",     "bed_elevation"};
-  return names;
-}
+// The maps a result can be exported as, by name (maps::summary_map_names()).
+inline const std::vector<std::string>& exportable_maps() { return maps::summary_map_names(); }
 
 // Writes the named maps of `result` (all of exportable_maps() when `names` is empty) as
 // <prefix>_<name>.tif, or <prefix>_<name>_<threshold>m.tif per depth threshold, and returns
 // the files written. A map the file lacks (bed_elevation of a flat scene) is skipped.
 // Throws std::invalid_argument for a name that is not exportable, std::runtime_error naming
-// the file when the result cannot be read (not a swe-mps result, no summary maps: a run that
-// stopped early) or a GeoTIFF cannot be written.
+// the file when the result cannot be read (not a swe-mps result: no summary maps) or a
+// GeoTIFF cannot be written. The .partial file of a run that stopped early has its summary.
 std::vector<std::filesystem::path> export_maps(const std::filesystem::path& result,
                                                const std::vector<std::string>& names,
                                                TiffLayout layout,

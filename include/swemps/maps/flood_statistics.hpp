@@ -6,7 +6,7 @@
 // writing the result is up to io.
 //
 // Rules, per cell, over the samples t_0 < t_1 < ... given to update():
-// - A sample has data where its depth is not NaN; samples without data are skipped.
+// - A sample has data where its depth is finite; samples without data are skipped.
 // - The cell is wet at sample k when depth_k > wet_depth (strictly); it is above threshold j
 //   when depth_k > threshold_j. Threshold 0 is the wet depth itself.
 // - max_depth: the largest depth of any sample with data.
@@ -26,15 +26,28 @@
 // - duration_above(j): a cell above threshold j at sample k counts as above it over
 //   (t_{k-1}, t_k], so the duration is the sum of t_k - t_{k-1} over those samples k >= 1;
 //   the first sample counts nothing, having no interval before it. 0 where never above.
-// Every map is NaN where the cell never had data.
+// Every map is NaN where the cell never had data. A cell is rated (flooded, in the hazard class
+// maps) when max_hazard_class is 1 or more: it had a wet sample with a velocity.
 
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "swemps/maps/hazard.hpp"
 
 namespace swemps::maps {
+
+// The whole-run maps of a result by the names its file gives them: the statistics below, the
+// hazard classes made from them, and the bed. arrival_time and inundation_duration hold one
+// map per depth threshold.
+inline const std::vector<std::string>& summary_map_names() {
+  static const std::vector<std::string> names{
+      "max_depth",           "time_of_max_depth", "max_surface_elevation", "max_speed",
+      "max_depth_speed",     "max_depth_speed2",  "max_hazard_rating",     "arrival_time",
+      "inundation_duration", "hazard_class_uk",   "hazard_class_aidr",     "bed_elevation"};
+  return names;
+}
 
 struct StatisticsSettings {
   double wet_depth_m = 0.01;  // >= 0: the depth a cell must exceed to count as wet

@@ -23,11 +23,13 @@ namespace swemps::scenario {
 // less that of a run refused at once). 1 kB, the project's memory target per particle, covers
 // both.
 inline constexpr double kBytesPerParticle = 1000.0;
-// A grid cell holds the gridded depth and velocity, the bed, the flood statistics (eight maps,
-// and arrival and duration at the wet depth and four more thresholds by default), the maps'
-// masked copies and the single-precision buffer they are written through: 26 doubles, counted
-// as 32 to leave room for a longer list of thresholds.
-inline constexpr double kBytesPerGridCell = 256.0;
+// A grid cell holds the gridded depth and velocity (3 doubles), the bed, the flood statistics
+// (8 maps, and arrival and duration at the wet depth and at each further depth threshold), the
+// maps' masked copies (3) and the single-precision buffer they are written through: counted as
+// 16 doubles and 2 a threshold (208 bytes with the 4 default thresholds).
+inline double bytes_per_grid_cell(std::size_t further_thresholds) {
+  return 8.0 * (16.0 + 2.0 * static_cast<double>(further_thresholds + 1));
+}
 // Splitting without a cap is assumed to double the particles at most (the benchmark's dam
 // break, docs/performance.md, grew from 1e4 to 2.1e4-2.6e4 before its front left the domain).
 inline constexpr double kSplittingGrowth = 2.0;
@@ -37,14 +39,13 @@ struct MemoryNeed {
   double particles = 0.0;       // at the start (water inflows bring in later is not counted)
   double peak_particles = 0.0;  // with the headroom splitting may take
   double grid_cells = 0.0;      // of the output grid
+  double bytes_per_cell = bytes_per_grid_cell(4);  // with the scene's depth thresholds
   // The key whose value asks for the largest share, and that share in words ("1.2e9 particles
   // of /water/0 at a spacing of 0.01 m"): where a user would change the scene.
   std::string json_path;
   std::string largest_share;
 
-  double bytes() const {
-    return peak_particles * kBytesPerParticle + grid_cells * kBytesPerGridCell;
-  }
+  double bytes() const { return peak_particles * kBytesPerParticle + grid_cells * bytes_per_cell; }
 };
 
 // A shallow-water scene once its rasters are read (the domain and the raster grid may come

@@ -142,11 +142,12 @@ struct Output {
   std::vector<double> depth_thresholds_m;
   maps::LandUse land_use = maps::LandUse::urban;  // the hazard rating's debris factor
   // The real date and time of t = 0 as given (ISO 8601), and as the time axes' CF units
-  // ("seconds since 2024-06-01 12:00:00+02:00"); both absent: a nominal epoch.
+  // ("seconds since 2024-06-01 12:00:00 +02:00"); both absent: a nominal epoch.
   std::optional<std::string> start_time;
   std::optional<std::string> start_time_units;
   // Whole-run maps written as GeoTIFF beside the netCDF file when the run completes
-  // (io::exportable_maps() names them); empty: none. Cloud-optimised unless raster_cog is false.
+  // (maps::summary_map_names() names them); empty: none. Cloud-optimised unless raster_cog is
+  // false.
   std::vector<std::string> rasters;
   bool raster_cog = true;
 };
