@@ -1,5 +1,7 @@
 // A Navier-Stokes run: scene -> ns::Simulation in its tank -> netCDF maps of the column depth
-// on the scene's grid, and a CSV series of the front, the Poisson solves and floor pressures.
+// on the scene's grid, and a CSV series of the front, the Poisson solves and floor pressures;
+// and, as a shallow-water run does, how it fails well: a stop signal leaves a readable file
+// holding the state reached and a checkpoint to go on from, bit for bit.
 
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -8,12 +10,16 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "swemps/cli/progress.hpp"
+#include "swemps/cli/restart.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/stop_signals.hpp"
 #include "swemps/cli/timing.hpp"
+#include "swemps/io/checkpoint.hpp"
 #include "swemps/ns/measures.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/scenario/build.hpp"
@@ -23,6 +29,8 @@ namespace swemps::cli {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+constexpr const char* kRunStateLabel = "swe-mps Navier-Stokes run";
 
 // The plan cell (along one axis) that holds coordinate x, or -1 outside the grid; cells are
 // centred on x0 + i dx, as ns::column_depth bins them.
@@ -121,9 +129,31 @@ template <int Dim>
 RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
                  const FrontObserver& observe_front) {
   const auto start = Clock::now();
+  // From the start: a signal while the scene is built stops the run before its first step.
+  StopSignals signals;
+  const auto [scenario_hash, restart] = plan_checkpoints(context);
+  // The series rows travel in the checkpoint only when there is one to write or read.
+  const bool checkpoints = context.checkpoints || restart.has_value();
   const auto terrain = scenario::read_terrain(scene);
   const auto tank = scenario::ns_tank<Dim>(scene);
   auto sim = scenario::make_ns_simulation<Dim>(scene);
+  // The run's own part of the checkpoint: where the file stands, the flood statistics and the
+  // series rows so far; read as the output is set up.
+  std::optional<swe::StateReader> run_state;
+  std::optional<io::WriterPosition> resume_at;
+  if (restart) {
+    const std::string what = "the checkpoint '" + restart->file.string() + "'";
+    try {
+      swe::StateReader in(restart->checkpoint.simulation, what);
+      sim.restore_state(in);
+      in.expect_end();
+      run_state.emplace(restart->checkpoint.run, what);
+      run_state->expect(kRunStateLabel);
+      resume_at = MapOutput::read_position(*run_state);
+    } catch (const swe::StateError& e) {
+      throw io::CheckpointError(e.what());
+    }
+  }
   const ns::Settings& settings = sim.settings();
   const double l0 = settings.spacing_m;
   const double floor_z = tank.interior.lower[Dim - 1];
@@ -157,7 +187,7 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
                : "water depth: area of the vertical section's fluid particles standing in the "
                  "cell over its length (Navier-Stokes column depth, 2D section)";
   MapOutput file(scene, terrain, grid, context, false, depth_name,
-                 Dim == 3 ? "Navier-Stokes, 3D" : "Navier-Stokes, 2D section");
+                 Dim == 3 ? "Navier-Stokes, 3D" : "Navier-Stokes, 2D section", resume_at);
 
   std::vector<std::string> columns{"time_s",          "time_step_s",        "front_m",
                                    "fluid_particles", "poisson_iterations", "poisson_residual",
@@ -174,20 +204,45 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
     probes.push_back(at);
   }
   CsvTable series(ns_series_path(scene.output.path), columns);
+  // Every row so far, for the checkpoint: a restarted run writes the table anew from them,
+  // which also drops rows a run killed after its checkpoint wrote beyond it.
+  std::vector<double> series_rows;
+  if (run_state) {
+    try {
+      file.restore_statistics(*run_state);
+      const std::size_t saved_columns = run_state->count();
+      series_rows = run_state->numbers();
+      run_state->expect_end();
+      if (saved_columns != columns.size() || series_rows.size() % columns.size() != 0) {
+        throw swe::StateError(run_state->what() + " holds a series of " +
+                              std::to_string(saved_columns) + " columns, this scene's has " +
+                              std::to_string(columns.size()));
+      }
+    } catch (const swe::StateError& e) {
+      throw io::CheckpointError(e.what());
+    }
+    for (std::size_t first = 0; first < series_rows.size(); first += columns.size()) {
+      series.row(std::span<const double>(series_rows).subspan(first, columns.size()));
+    }
+  }
 
   double output_s = 0.0;
   const double wet = scene.output.wet_depth_m;
   // A sample and the output time right after it can fall on the same step (the run lands on
   // the output time while heading for the sample): the series gets that state once.
-  std::size_t sampled_at_step = 0;
-  bool sampled = false;
+  std::size_t sampled_at_step = 0, mapped_at_step = 0;
+  bool sampled = false, mapped = false;
   double last_front = 0.0;
   const auto sample = [&](bool maps) {
     const auto t0 = Clock::now();
     const auto& p = sim.particles();
     const ColumnFields f = column_fields<Dim>(p, l0, plan);
     const GriddedState state{f.depth, f.u, f.v};
-    if (maps) file.write_maps(sim.time(), state);
+    if (maps) {
+      file.write_maps(sim.time(), state);
+      mapped = true;
+      mapped_at_step = sim.steps();
+    }
     if (sampled && sampled_at_step == sim.steps()) {
       output_s += seconds_since(t0);
       return last_front;
@@ -228,14 +283,60 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
                             stepped ? static_cast<double>(last.unknowns) : kNaN};
     for (const auto& at : probes) row.push_back(ns::pressure_at<Dim>(p, sim.pressure_kernel(), at));
     series.row(row);
+    if (checkpoints) series_rows.insert(series_rows.end(), row.begin(), row.end());
     if (observe_front) observe_front(sim.time(), front);
     output_s += seconds_since(t0);
     last_front = front;
     return front;
   };
 
-  sample(true);
+  if (restart) {
+    spdlog::info("going on from checkpoint {} at t = {:.9g} s (step {})", restart->file.string(),
+                 sim.time(), sim.steps());
+    // The stopped run wrote and sampled the state it stopped at.
+    sampled = mapped = true;
+    sampled_at_step = mapped_at_step = sim.steps();
+  } else {
+    sample(true);
+  }
+  const double resumed_at_s = sim.time();
   Progress progress(scene.end_time_s, context.progress);
+  progress.resume_from(sim.time(), sim.steps());
+  const std::filesystem::path checkpoint_file = checkpoint_path(scene.output.path);
+  // The file on disk first holds every record the checkpoint counts, so that a run killed
+  // outright after the checkpoint can still go on from it.
+  const auto write_checkpoint = [&] {
+    const auto checkpoint_start = Clock::now();
+    file.flush();
+    swe::StateWriter state;
+    sim.save_state(state);
+    swe::StateWriter run;
+    run.text(kRunStateLabel);
+    file.save_state(run);
+    run.count(columns.size());
+    run.numbers(series_rows);
+    write_run_checkpoint(checkpoint_file, scenario_hash, sim.time(), sim.steps(), state.bytes(),
+                         run.bytes(), checkpoint_start);
+  };
+  // A run that stops early: with `state_kept`, the state it stopped at as a last map record
+  // (not a series sample: the restarted run's series is the straight run's) and a checkpoint;
+  // then the file is closed as <output>.partial with the status, and the series table stays
+  // <table>.partial. Returns what was written, for the closing message.
+  const auto close_early = [&](const std::string& status, const std::string& message,
+                               bool state_kept) {
+    if (state_kept && !(mapped && mapped_at_step == sim.steps())) {
+      const ColumnFields f = column_fields<Dim>(sim.particles(), l0, plan);
+      file.write_maps(sim.time(), GriddedState{f.depth, f.u, f.v});
+    }
+    if (state_kept && context.checkpoints) write_checkpoint();
+    file.close_stopped(status, message);
+    progress.finish();
+    if (!state_kept) return file.partial_path().string();
+    std::string written =
+        fmt::format("the state at t = {:.9g} s to {}", sim.time(), file.partial_path().string());
+    if (context.checkpoints) written += " and the checkpoint " + checkpoint_file.string();
+    return written;
+  };
   Interval interval;
   double particle_steps = 0.0;
   const auto stops = stops_of(scene.output, scene.end_time_s);
@@ -246,47 +347,86 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
     next_map[k] = stops[k].maps ? stops[k].time_s
                                 : (k + 1 < stops.size() ? next_map[k + 1] : scene.end_time_s);
   }
-  for (std::size_t k = 0; k < stops.size(); ++k) {
-    const Stop& stop = stops[k];
-    while (sim.time() < stop.time_s) {
-      // One step per call, so that progress and the per-step log follow every step. Series
-      // samples are taken at the end of the first full step that reaches them; only output
-      // times are landed on, in equal steps as advance_to takes them (a shortened step would
-      // spike the number-density source, which scales as 1/dt^2).
-      const double dt = sim.stable_time_step();
-      const double remaining = next_map[k] - sim.time();
-      if (!stop.maps && remaining > dt) {
-        sim.advance(dt);
-      } else if (remaining <= dt) {
-        sim.advance_to(next_map[k]);
-      } else {
-        sim.advance(remaining / std::ceil(remaining / dt * (1.0 - 1e-12)));
+  int stop_signal = 0;
+  std::size_t outputs = 0;
+  try {
+    for (std::size_t k = 0; k < stops.size() && stop_signal == 0; ++k) {
+      const Stop& stop = stops[k];
+      // Taken before the run was restarted: a stop signal is only looked at before a step, so
+      // every stop the stopped run reached was sampled.
+      if (restart && stop.time_s <= resumed_at_s) continue;
+      while (sim.time() < stop.time_s && (stop_signal = signals.received()) == 0) {
+        // One step per call, so that progress and the per-step log follow every step. Series
+        // samples are taken at the end of the first full step that reaches them; only output
+        // times are landed on, in equal steps as advance_to takes them (a shortened step would
+        // spike the number-density source, which scales as 1/dt^2).
+        const double dt = sim.stable_time_step();
+        const double remaining = next_map[k] - sim.time();
+        if (!stop.maps && remaining > dt) {
+          sim.advance(dt);
+        } else if (remaining <= dt) {
+          sim.advance_to(next_map[k]);
+        } else {
+          sim.advance(remaining / std::ceil(remaining / dt * (1.0 - 1e-12)));
+        }
+        const auto& last = sim.last_step();
+        particle_steps += static_cast<double>(sim.particles().fluid);
+        ++interval.steps;
+        interval.iterations += last.poisson.iterations;
+        interval.max_iterations = std::max(interval.max_iterations, last.poisson.iterations);
+        interval.min_dt = std::min(interval.min_dt, last.time_step_s);
+        interval.max_dt = std::max(interval.max_dt, last.time_step_s);
+        spdlog::debug(
+            "step {}: t = {:.6g} s, dt = {:.3g} s, Poisson {} iterations, residual {:.2e}{}, {} "
+            "unknowns, {} surface particles, {} collisions",
+            sim.steps(), sim.time(), last.time_step_s, last.poisson.iterations,
+            last.poisson.relative_residual, last.poisson.converged ? "" : " (not converged)",
+            last.unknowns, last.surface_particles, last.collisions);
+        progress.update(sim.time(), sim.steps(), sim.particles().fluid);
       }
-      const auto& last = sim.last_step();
-      particle_steps += static_cast<double>(sim.particles().fluid);
-      ++interval.steps;
-      interval.iterations += last.poisson.iterations;
-      interval.max_iterations = std::max(interval.max_iterations, last.poisson.iterations);
-      interval.min_dt = std::min(interval.min_dt, last.time_step_s);
-      interval.max_dt = std::max(interval.max_dt, last.time_step_s);
+      if (stop_signal != 0) break;
+      const double front = sample(stop.maps);
+      if (!stop.maps) continue;
+      ++outputs;
+      if (context.checkpoints && context.checkpoint_every > 0 &&
+          outputs % static_cast<std::size_t>(context.checkpoint_every) == 0 &&
+          stop.time_s < scene.output.times_s.back()) {
+        write_checkpoint();
+      }
+      const double steps = static_cast<double>(std::max<std::size_t>(interval.steps, 1));
       spdlog::debug(
-          "step {}: t = {:.6g} s, dt = {:.3g} s, Poisson {} iterations, residual {:.2e}{}, {} "
-          "unknowns, {} surface particles, {} collisions",
-          sim.steps(), sim.time(), last.time_step_s, last.poisson.iterations,
-          last.poisson.relative_residual, last.poisson.converged ? "" : " (not converged)",
-          last.unknowns, last.surface_particles, last.collisions);
-      progress.update(sim.time(), sim.steps(), sim.particles().fluid);
+          "wrote output at t = {:.6g} s: {} steps since the last (dt {:.3g} to {:.3g} s), Poisson "
+          "iterations {:.1f} per step (at most {}), last residual {:.2e}, front at {:.4f} m",
+          sim.time(), interval.steps, interval.min_dt, interval.max_dt,
+          static_cast<double>(interval.iterations) / steps, interval.max_iterations,
+          sim.last_step().poisson.relative_residual, front);
+      interval = Interval{};
     }
-    const double front = sample(stop.maps);
-    if (!stop.maps) continue;
-    const double steps = static_cast<double>(std::max<std::size_t>(interval.steps, 1));
-    spdlog::debug(
-        "wrote output at t = {:.6g} s: {} steps since the last (dt {:.3g} to {:.3g} s), Poisson "
-        "iterations {:.1f} per step (at most {}), last residual {:.2e}, front at {:.4f} m",
-        sim.time(), interval.steps, interval.min_dt, interval.max_dt,
-        static_cast<double>(interval.iterations) / steps, interval.max_iterations,
-        sim.last_step().poisson.relative_residual, front);
-    interval = Interval{};
+    if (stop_signal != 0) {
+      const std::string what = fmt::format("stopped by {} at t = {:.9g} s (step {})",
+                                           signal_name(stop_signal), sim.time(), sim.steps());
+      spdlog::warn("{}: writing the state reached and closing the output", what);
+      std::string message = what + "; wrote " + close_early("interrupted", what, true);
+      if (context.checkpoints) {
+        message += "; to go on, run the same command with --restart " + checkpoint_file.string();
+      }
+      throw RunStopped(stop_signal, message);
+    }
+  } catch (const RunStopped&) {
+    throw;  // closed above
+  } catch (const std::exception& e) {
+    // A breakdown (ns::SimulationError) happens inside a step, which leaves the particles
+    // half moved: unlike a shallow-water run there is no last good state to write or go on
+    // from. The maps written so far stay readable, closed with the reason.
+    const bool breakdown = dynamic_cast<const ns::SimulationError*>(&e) != nullptr;
+    try {
+      const std::string written = close_early(breakdown ? "breakdown" : "failed", e.what(), false);
+      spdlog::error("the {}; kept the output written so far in {}",
+                    breakdown ? "simulation broke down" : "run failed", written);
+    } catch (const std::exception& also) {
+      spdlog::error("the run stopped, and its output could not be closed: {}", also.what());
+    }
+    throw;
   }
   progress.finish();
   file.finish();

@@ -41,10 +41,10 @@ Options:
                       study: threads per run (default: cores / jobs)
   -j, --jobs N        study: runs at once (default: the study file's jobs, or one per core)
       --checkpoint-every N
-                      run (shallow water): also write a checkpoint every N output times
+                      run: also write a checkpoint every N output times
                       (one is always written when the run stops early); the checkpoint is
                       the output path with the extension .checkpoint
-      --restart FILE  run (shallow water): go on from checkpoint FILE, written by a run of
+      --restart FILE  run: go on from checkpoint FILE, written by a run of
                       the same scenario file, writing on into the output that run left
                       (OUTPUT.partial); the result is the same as one run straight through
       --maps LIST     export: the maps to write, comma-separated, or "all" (the default);

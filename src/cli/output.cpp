@@ -50,12 +50,10 @@ std::vector<double> grid_bed(const scenario::Terrain& terrain, const swe::Regula
 }  // namespace
 
 RunContext run_context(const Options& options, const std::string& command_line,
-                       const scenario::Scenario& scene) {
-  if (scene.model == scenario::Model::ns && (options.restart || options.checkpoint_every > 0)) {
-    throw UsageError("--restart and --checkpoint-every apply to shallow-water scenes only");
-  }
+                       const scenario::Scenario& /*scene*/) {
+  // Both models write checkpoints and go on from them.
   RunContext context{options.scenario, command_line, options.verbosity != Verbosity::quiet};
-  context.checkpoints = scene.model == scenario::Model::swe;
+  context.checkpoints = true;
   context.checkpoint_every = options.checkpoint_every;
   context.restart = options.restart;
   return context;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "swemps/cli/progress.hpp"
+#include "swemps/cli/restart.hpp"
 #include "swemps/cli/runs.hpp"
 #include "swemps/cli/stop_signals.hpp"
 #include "swemps/cli/timing.hpp"
@@ -151,12 +152,6 @@ class SweOutput {
   double seconds_ = 0.0, statistics_seconds_ = 0.0;
 };
 
-// What a run restarted from a checkpoint goes on from.
-struct Restart {
-  std::filesystem::path file;
-  io::Checkpoint checkpoint;
-};
-
 // A raster bed with cells under 3 particle spacings can be rough inside one kernel support,
 // where a point-sampled bed cannot balance the smoothed depth: still water over such a bed was
 // measured to start moving and, under the seed scheme at 1 spacing, to break down
@@ -181,27 +176,6 @@ void warn_if_bed_finer_than_particles(const scenario::Scenario& scene,
       "a bed rough from cell to cell can set still water moving; where water should rest, "
       "choose numerics.bed_term \"balanced\" or resample the bed to cells of {:.3g} m or more",
       cell, spacing, kSmoothCells * spacing);
-}
-
-// Reads the checkpoint and checks that it was written for this scenario file, before anything
-// is built: a wrong checkpoint is refused at once.
-Restart read_restart(const std::filesystem::path& file, std::uint64_t scenario_hash,
-                     const std::filesystem::path& scenario_file) {
-  Restart r{file, io::read_checkpoint(file)};
-  if (r.checkpoint.scenario_hash != scenario_hash) {
-    throw io::CheckpointError("the checkpoint '" + file.string() + "' was written for another " +
-                              "scenario than '" + scenario_file.string() +
-                              "' (its text has changed, or it is another file): a run can only "
-                              "go on with the scene it started with");
-  }
-  const std::string program = std::string("swe-mps ") + SWEMPS_VERSION;
-  if (r.checkpoint.program != program) {
-    spdlog::warn(
-        "the checkpoint was written by {}, this is {}: the run goes on, but need not "
-        "match one run straight through bit for bit",
-        r.checkpoint.program, program);
-  }
-  return r;
 }
 
 // Restores the simulation and the run's own state (the output position, the next series
@@ -317,11 +291,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   const auto start = Clock::now();
   // From the start: a signal while the scene is built stops the run before its first step.
   StopSignals signals;
-  const bool checkpoints = context.checkpoints || context.restart;
-  const std::uint64_t scenario_hash = checkpoints ? io::file_hash(context.scenario_file) : 0;
-  std::optional<Restart> restart;
-  if (context.restart)
-    restart = read_restart(*context.restart, scenario_hash, context.scenario_file);
+  const auto [scenario_hash, restart] = plan_checkpoints(context);
 
   auto built = scenario::build(scene);
   auto& sim = built.simulation;
@@ -404,20 +374,10 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   const auto write_checkpoint = [&] {
     const auto checkpoint_start = Clock::now();
     output.flush();
-    io::Checkpoint c;
-    c.scenario_hash = scenario_hash;
-    c.program = std::string("swe-mps ") + SWEMPS_VERSION;
-    c.time_s = sim.time();
-    c.steps = sim.steps();
     swe::StateWriter state;
     sim.save_state(state);
-    c.simulation.assign(state.bytes().begin(), state.bytes().end());
-    c.run = run_state(output, next_sample);
-    writing([&] { io::write_checkpoint(checkpoint_file, c); });
-    spdlog::info("checkpoint at t = {:.9g} s (step {}): {} ({:.1f} MB, {:.3f} s)", sim.time(),
-                 sim.steps(), checkpoint_file.string(),
-                 static_cast<double>(c.simulation.size() + c.run.size()) / 1e6,
-                 seconds_since(checkpoint_start));
+    write_run_checkpoint(checkpoint_file, scenario_hash, sim.time(), sim.steps(), state.bytes(),
+                         run_state(output, next_sample), checkpoint_start);
   };
   // A run that stops early: the state it stopped at as a last map record (the state a
   // breakdown went back to is the last good one), a checkpoint, then the file closed as

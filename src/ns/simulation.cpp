@@ -434,6 +434,90 @@ void Simulation<Dim>::remove_escaped() {
   if (particles_.fluid == 0) throw SimulationError("ns step: every fluid particle left the tank");
 }
 
+namespace {
+
+template <int Dim>
+std::string state_label() {
+  return Dim == 2 ? "ns simulation 2D" : "ns simulation 3D";
+}
+
+}  // namespace
+
+template <int Dim>
+void Simulation<Dim>::save_state(swe::StateWriter& out) const {
+  out.text(state_label<Dim>());
+  out.number(time_);
+  out.count(totals_.steps);
+  out.count(static_cast<std::uint64_t>(totals_.poisson_iterations));
+  out.count(static_cast<std::uint64_t>(totals_.max_poisson_iterations));
+  out.count(totals_.unconverged_solves);
+  out.count(totals_.lost_particles);
+  out.number(last_.time_step_s);
+  out.count(static_cast<std::uint64_t>(last_.poisson.iterations));
+  out.number(last_.poisson.relative_residual);
+  out.count(last_.poisson.converged ? 1 : 0);
+  out.count(last_.unknowns);
+  out.count(last_.surface_particles);
+  out.count(last_.collisions);
+  out.count(particles_.fluid);
+  out.count(particles_.wall);
+  out.count(particles_.dummy);
+  for (int d = 0; d < Dim; ++d) out.numbers(particles_.position[d]);
+  for (int d = 0; d < Dim; ++d) out.numbers(particles_.velocity[d]);
+  out.numbers(particles_.pressure);
+}
+
+template <int Dim>
+void Simulation<Dim>::restore_state(swe::StateReader& in) {
+  in.expect(state_label<Dim>());
+  const double time_s = in.number();
+  RunTotals totals;
+  totals.steps = in.count();
+  totals.poisson_iterations = static_cast<long long>(in.count());
+  totals.max_poisson_iterations = static_cast<int>(in.count());
+  totals.unconverged_solves = in.count();
+  totals.lost_particles = in.count();
+  StepReport last;
+  last.time_step_s = in.number();
+  last.poisson.iterations = static_cast<int>(in.count());
+  last.poisson.relative_residual = in.number();
+  last.poisson.converged = in.count() != 0;
+  last.unknowns = in.count();
+  last.surface_particles = in.count();
+  last.collisions = in.count();
+  const std::size_t fluid = in.count(), wall = in.count(), dummy = in.count();
+  // Fluid may have left the tank since the start; the tank's walls never change.
+  if (wall != particles_.wall || dummy != particles_.dummy ||
+      fluid + totals.lost_particles != particles_.fluid + totals_.lost_particles) {
+    throw swe::StateError(in.what() + " holds a tank of " + std::to_string(fluid) + " fluid, " +
+                          std::to_string(wall) + " wall and " + std::to_string(dummy) +
+                          " dummy particles (" + std::to_string(totals.lost_particles) +
+                          " lost), this scene's has " + std::to_string(particles_.fluid) + ", " +
+                          std::to_string(particles_.wall) + " and " +
+                          std::to_string(particles_.dummy) + ": it belongs to another scene");
+  }
+  Particles<Dim> restored;
+  restored.fluid = fluid;
+  restored.wall = wall;
+  restored.dummy = dummy;
+  const auto read_field = [&](std::vector<double>& field) {
+    field = in.numbers();
+    if (field.size() != restored.size()) {
+      throw swe::StateError(in.what() + ": a particle field holds " + std::to_string(field.size()) +
+                            " values for " + std::to_string(restored.size()) + " particles");
+    }
+  };
+  for (int d = 0; d < Dim; ++d) read_field(restored.position[d]);
+  for (int d = 0; d < Dim; ++d) read_field(restored.velocity[d]);
+  read_field(restored.pressure);
+  particles_ = std::move(restored);
+  time_ = time_s;
+  // Phase times are wall-clock seconds of this process, not state.
+  totals.phases = totals_.phases;
+  totals_ = totals;
+  last_ = last;
+}
+
 template class Simulation<2>;
 template class Simulation<3>;
 

@@ -381,3 +381,118 @@ TEST_CASE("a run that fails otherwise keeps the maps written before, closed with
   CHECK(deepest > 0.1);
   CHECK(deepest < 0.5);
 }
+
+namespace {
+
+// A Navier-Stokes dam break in a 2D tank (100 fluid particles): it collapses, sloshes and
+// settles. About 2 s on one thread, so that a signal after the first progress line lands
+// mid-run.
+constexpr const char* kNsTankScene = R"({
+  "name": "tank", "end_time": 10,
+  "model": "ns", "dimension": 2,
+  "ns": {"spacing": 0.01},
+  "domain": {"x_min": 0, "x_max": 0.4, "y_min": 0, "y_max": 0.1},
+  "water": [{"rectangle": {"x_min": 0, "x_max": 0.1, "y_min": 0, "y_max": 0.1}, "depth": 0.1}],
+  "output": {"path": "tank.nc", "interval": 0.5, "series_interval": 0.05,
+             "gauges": [{"name": "wall foot", "x": 0.02, "y": 0.05}]}
+})";
+
+// A Navier-Stokes run writes no particles: the depth map of the last time, every series, the
+// flood statistics and the series table, bit for bit (the table as text, to its last digit).
+void require_same_ns_end(const fs::path& a, const fs::path& b) {
+  const NcFile fa(a), fb(b);
+  CHECK(fa.times().back() == fb.times().back());
+  const auto depth_a = fa.whole("depth");
+  const auto depth_b = fb.whole("depth");
+  const std::size_t cells = depth_a.size() / fa.times().size();
+  REQUIRE(cells > 0);
+  REQUIRE(depth_b.size() >= cells);
+  CHECK(std::vector<double>(depth_a.end() - static_cast<long>(cells), depth_a.end()) ==
+        std::vector<double>(depth_b.end() - static_cast<long>(cells), depth_b.end()));
+  for (const char* series : {"series_time", "volume_in_domain", "volume_outflow"}) {
+    INFO(series);
+    CHECK(fa.all(series, "series_time") == fb.all(series, "series_time"));
+  }
+  for (const char* map : {"max_depth", "time_of_max_depth", "max_speed", "arrival_time"}) {
+    INFO(map);
+    CHECK(fa.whole(map) == fb.whole(map));
+  }
+  const auto table = [](const fs::path& nc) { return read_text(swemps::cli::ns_series_path(nc)); };
+  CHECK(!table(a).empty());
+  CHECK(table(a) == table(b));
+}
+
+}  // namespace
+
+TEST_CASE("a Navier-Stokes run stops on SIGTERM and goes on from its checkpoint to the same end",
+          "[cli][signals][ns]") {
+  swemps::testing::TempDir dir("failing-well-ns");
+  const auto scene = write_scene(dir.path(), "tank.json", kNsTankScene).string();
+  const auto straight = dir.path() / "straight.nc";
+  const auto r = run("run " + scene + " -q -o " + straight.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+
+  SECTION("SIGTERM, then a restart to the end") {
+    const auto out = dir.path() / "stopped.nc";
+    const pid_t pid = start({"run", scene, "-t", "1", "-o", out.string()}, dir.path() / "log");
+    const int status = stop_when_going(pid, dir.path() / "log", SIGTERM);
+    const std::string log = read_text(dir.path() / "log");
+    INFO(log);
+    REQUIRE(status == 143);
+    CHECK_THAT(log, Contains("swe-mps: stopped by SIGTERM at t = "));
+    CHECK_THAT(log, Contains("--restart " + (dir.path() / "stopped.checkpoint").string()));
+    CHECK(fs::exists(dir.path() / "stopped.checkpoint"));
+    CHECK(fs::exists(dir.path() / "stopped.series.csv.partial"));
+    {
+      const NcFile file(dir.path() / "stopped.nc.partial");
+      CHECK(file.attribute("run_status") == "interrupted");
+      CHECK(file.length("series_time") >= 1);
+      CHECK(file.times().back() > 0.0);  // the state the run stopped at
+      CHECK(file.times().back() < 10.0);
+    }
+    const auto restarted = run("run " + scene + " -q -o " + out.string() + " --restart " +
+                               (dir.path() / "stopped.checkpoint").string());
+    INFO(restarted.output);
+    REQUIRE(restarted.status == 0);
+    CHECK_FALSE(fs::exists(dir.path() / "stopped.nc.partial"));
+    CHECK_FALSE(fs::exists(dir.path() / "stopped.series.csv.partial"));
+    const NcFile file(out);
+    CHECK(file.attribute("run_status") == "complete");
+    CHECK_THAT(file.attribute("history"), Contains("--restart"));
+    require_same_ns_end(straight, out);
+  }
+  SECTION("--checkpoint-every, and a run killed after the checkpoint") {
+    const auto every = dir.path() / "every.nc";
+    const auto e = run("run " + scene + " -q -o " + every.string() + " --checkpoint-every 7");
+    INFO(e.output);
+    REQUIRE(e.status == 0);
+    const auto checkpoint = dir.path() / "every.checkpoint";
+    REQUIRE(fs::exists(checkpoint));  // at t = 7 s: the 14th output time
+    require_same_ns_end(straight, every);
+
+    // A run killed after that checkpoint leaves its files as .partial, with records after
+    // it: the restart writes them anew, and the same.
+    const auto killed = dir.path() / "killed.nc";
+    fs::copy_file(every, dir.path() / "killed.nc.partial");
+    fs::copy_file(swemps::cli::ns_series_path(every), dir.path() / "killed.series.csv.partial");
+    fs::copy_file(checkpoint, dir.path() / "killed.checkpoint");
+    const auto restarted = run("run " + scene + " -q -o " + killed.string() + " --restart " +
+                               (dir.path() / "killed.checkpoint").string());
+    INFO(restarted.output);
+    REQUIRE(restarted.status == 0);
+    require_same_ns_end(straight, killed);
+    const NcFile a(straight), b(killed);
+    CHECK(a.times() == b.times());
+    CHECK(a.whole("depth") == b.whole("depth"));
+  }
+  SECTION("a checkpoint of another scene is refused") {
+    const auto every = dir.path() / "every.nc";
+    REQUIRE(run("run " + scene + " -q -o " + every.string() + " --checkpoint-every 7").status == 0);
+    const auto other = write_scene(dir.path(), "other.json", kDamScene).string();
+    const auto refused = run("run " + other + " -q -o " + every.string() + " --restart " +
+                             (dir.path() / "every.checkpoint").string());
+    CHECK(refused.status == 2);
+    CHECK_THAT(refused.output, Contains("was written for another scenario"));
+  }
+}

@@ -41,16 +41,16 @@ struct RunContext {
   std::filesystem::path scenario_file;
   std::string command_line;
   bool progress = true;  // draw the progress bar (not with -q)
-  // Shallow water: write checkpoints (checkpoint_path()) when the run stops early and, if
-  // checkpoint_every > 0, every checkpoint_every output times; go on from `restart`. Off for
-  // the runs of compare and study, whose files are not meant to be continued.
+  // Write checkpoints (checkpoint_path()) when the run stops early and, if checkpoint_every >
+  // 0, every checkpoint_every output times; go on from `restart`. Off for the runs of compare
+  // and study, whose files are not meant to be continued.
   bool checkpoints = false;
   int checkpoint_every = 0;
   std::optional<std::filesystem::path> restart = std::nullopt;
 };
 
 // The context of `swe-mps run` for the scene: checkpoints on, and the options' restart and
-// checkpoint interval. Throws UsageError for checkpoint options on a Navier-Stokes scene.
+// checkpoint interval, for either model.
 RunContext run_context(const Options& options, const std::string& command_line,
                        const scenario::Scenario& scene);
 

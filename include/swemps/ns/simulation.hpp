@@ -39,6 +39,7 @@
 #include "swemps/ns/particles.hpp"
 #include "swemps/ns/poisson.hpp"
 #include "swemps/ns/settings.hpp"
+#include "swemps/swe/state_record.hpp"
 
 namespace swemps::ns {
 
@@ -103,6 +104,16 @@ class Simulation {
   // Steps until time() == t exactly: the span left is cut into equal steps of at most
   // stable_time_step(), so none is shorter than half of it.
   void advance_to(double t);
+
+  // Everything the next step depends on, as a record (a checkpoint's simulation part): time,
+  // run totals, the last step's report, and every particle's position, velocity and pressure
+  // (the pressure is the next Poisson solve's starting guess, so it decides the next step's
+  // round-off). Neighbour lists, number densities and the Poisson system are made anew each
+  // step from these, so a restored simulation steps on bit for bit.
+  void save_state(swe::StateWriter& out) const;
+  // Into a simulation built from the same scene. Throws swe::StateError for a record of
+  // another model or dimension, or of a tank with other particle counts.
+  void restore_state(swe::StateReader& in);
 
  private:
   void sort_fluid_by_cell();
