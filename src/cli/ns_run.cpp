@@ -20,6 +20,7 @@
 #include "swemps/cli/stop_signals.hpp"
 #include "swemps/cli/timing.hpp"
 #include "swemps/io/checkpoint.hpp"
+#include "swemps/io/flood_products.hpp"
 #include "swemps/ns/measures.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/scenario/build.hpp"
@@ -196,7 +197,7 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
   // the water exerts on it.
   std::vector<std::array<double, Dim>> probes;
   for (const auto& g : scene.output.gauges) {
-    columns.push_back(column_name(g.name) + "_floor_pressure_pa");
+    columns.push_back(io::column_name(g.name) + "_floor_pressure_pa");
     std::array<double, Dim> at{};
     at[0] = g.position_m[0];
     if constexpr (Dim == 3) at[1] = g.position_m[1];

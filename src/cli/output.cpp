@@ -3,7 +3,6 @@
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
-#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -273,15 +272,6 @@ void CsvTable::finish() {
     throw OutputError("cannot rename '" + partial_path_.string() + "' to '" + path_.string() +
                       "': " + ec.message());
   }
-}
-
-std::string column_name(const std::string& text) {
-  std::string out = text;
-  for (char& c : out) {
-    const auto u = static_cast<unsigned char>(c);
-    if (!std::isalnum(u) && c != '_' && c != '-' && c != '.') c = '_';
-  }
-  return out;
 }
 
 }  // namespace swemps::cli

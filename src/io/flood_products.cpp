@@ -157,16 +157,6 @@ std::string threshold_text(double threshold_m) {
   return text;
 }
 
-// The gauge's name as a column name that spreadsheet and data-frame readers take as it is.
-std::string column_part(const std::string& name) {
-  std::string out = name;
-  for (char& c : out) {
-    const auto u = static_cast<unsigned char>(c);
-    if (!std::isalnum(u) && c != '_' && c != '-' && c != '.') c = '_';
-  }
-  return out;
-}
-
 }  // namespace
 
 std::vector<std::filesystem::path> export_maps(const std::filesystem::path& result,
@@ -236,6 +226,15 @@ std::vector<std::filesystem::path> export_maps(const std::filesystem::path& resu
   return written;
 }
 
+std::string column_name(const std::string& text) {
+  std::string out = text;
+  for (char& c : out) {
+    const auto u = static_cast<unsigned char>(c);
+    if (!std::isalnum(u) && c != '_' && c != '-' && c != '.') c = '_';
+  }
+  return out;
+}
+
 bool export_gauges(const std::filesystem::path& result, const std::filesystem::path& csv) {
   const ResultReader in(result);
   if (!in.has("gauge_name")) return false;
@@ -267,7 +266,7 @@ bool export_gauges(const std::filesystem::path& result, const std::filesystem::p
   bool good = std::fputs("time_s", out) >= 0;
   for (const auto& g : gauges) {
     for (const char* unit : units)
-      good = good && std::fprintf(out, ",%s_%s", column_part(g).c_str(), unit) > 0;
+      good = good && std::fprintf(out, ",%s_%s", column_name(g).c_str(), unit) > 0;
   }
   good = good && std::fputc('\n', out) != EOF;
   for (std::size_t t = 0; t < time.size() && good; ++t) {

@@ -141,8 +141,4 @@ class CsvTable {
   std::FILE* file_ = nullptr;
 };
 
-// A column name that spreadsheet and data-frame readers take as it is: letters, digits, '_',
-// '-' and '.' kept, anything else (spaces, commas, quotes) replaced by '_'.
-std::string column_name(const std::string& text);
-
 }  // namespace swemps::cli

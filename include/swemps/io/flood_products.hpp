@@ -27,6 +27,10 @@ std::vector<std::filesystem::path> export_maps(const std::filesystem::path& resu
                                                TiffLayout layout,
                                                const std::filesystem::path& prefix);
 
+// A column name that spreadsheet and data-frame readers take as it is: letters, digits, '_',
+// '-' and '.' kept, anything else (spaces, commas, quotes) replaced by '_'.
+std::string column_name(const std::string& text);
+
 // Writes the gauge series of `result` as CSV to `csv` (under <csv>.partial, then renamed):
 // a header naming each column with its unit, then one row per series time: time_s, and per
 // gauge <name>_depth_m, <name>_surface_elevation_m, <name>_u_m_s, <name>_v_m_s (empty where
