@@ -10,6 +10,19 @@
 
 namespace swemps::ns {
 
+std::vector<std::int32_t> number_unknowns(std::span<const char> unknown, std::size_t count,
+                                          PoissonSystem& out) {
+  std::vector<std::int32_t> unknown_of_particle(count, -1);
+  out.particle_of_unknown.clear();
+  for (std::size_t i = 0; i < count; ++i) {
+    if (unknown[i]) {
+      unknown_of_particle[i] = static_cast<std::int32_t>(out.particle_of_unknown.size());
+      out.particle_of_unknown.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return unknown_of_particle;
+}
+
 void assemble_poisson(const neighbors::NeighborList& pairs, std::span<const double> pair_weight,
                       std::span<const char> unknown, std::span<const double> source,
                       std::size_t candidate_count, double laplacian_factor, PoissonSystem& out) {
@@ -18,14 +31,8 @@ void assemble_poisson(const neighbors::NeighborList& pairs, std::span<const doub
     throw std::invalid_argument("poisson: inputs do not match the neighbour list");
   }
   if (!(laplacian_factor > 0.0)) throw std::invalid_argument("poisson: laplacian factor <= 0");
-  std::vector<std::int32_t> unknown_of_particle(candidate_count, -1);
-  out.particle_of_unknown.clear();
-  for (std::size_t i = 0; i < candidate_count; ++i) {
-    if (unknown[i]) {
-      unknown_of_particle[i] = static_cast<std::int32_t>(out.particle_of_unknown.size());
-      out.particle_of_unknown.push_back(static_cast<std::uint32_t>(i));
-    }
-  }
+  const std::vector<std::int32_t> unknown_of_particle =
+      number_unknowns(unknown, candidate_count, out);
   const auto n = static_cast<int>(out.particle_of_unknown.size());
 
   // Rows in compressed form, written straight into the matrix's own arrays: one pass counts

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "swemps/neighbors/parallel.hpp"
+#include "swemps/ns/boundary_pressure.hpp"
 
 namespace swemps::ns {
 
@@ -32,6 +33,12 @@ void check_settings(const Settings& s) {
   require(s.max_time_step_s > 0.0, "max time step must be > 0");
   require(s.free_surface_beta > 0.0 && s.free_surface_beta < 1.0, "beta must be in (0, 1)");
   require(s.source_gamma >= 0.0 && s.source_gamma <= 1.0, "gamma must be in [0, 1]");
+  require(s.free_surface_asymmetry >= 0.0 && s.free_surface_asymmetry < 1.0,
+          "free-surface asymmetry must be in [0, 1) spacings");
+  require(s.gradient == PressureGradient::corrected ||
+              (s.boundary == BoundaryPressure::poisson && s.free_surface_asymmetry == 0.0),
+          "extrapolated boundary pressures and the free-surface asymmetry test need the "
+          "corrected pressure gradient");
   for (const KernelChoice* k : {&s.pressure_kernel, &s.velocity_kernel}) {
     require(k->support_spacings > 1.0 && k->support_spacings <= 8.0,
             "kernel support must be in (1, 8] spacings");
@@ -152,7 +159,7 @@ void Simulation<Dim>::advance(double dt) {
   find_neighbours();
   totals_.phases.neighbors += seconds_since(start);
   start = Clock::now();
-  measure_density();
+  measure_density(dt);
   totals_.phases.density += seconds_since(start);
   solve_pressure(dt);
   start = Clock::now();
@@ -275,10 +282,15 @@ void Simulation<Dim>::collide(double dt) {
 }
 
 template <int Dim>
-void Simulation<Dim>::measure_density() {
-  const std::size_t candidates = particles_.fluid + particles_.wall;
+void Simulation<Dim>::measure_density(double dt) {
+  const std::size_t fluid = particles_.fluid;
+  const std::size_t candidates = fluid + particles_.wall;
   pair_weight_.resize(pairs_.index.size());
   number_density_.assign(candidates, 0.0);
+  // With extrapolated boundary pressures, the fluid's distance to a boundary particle is
+  // taken without gravity's part of the predicted displacement, g dt^2 (settings.hpp).
+  const double lift =
+      settings_.boundary == BoundaryPressure::extrapolated ? settings_.gravity_m_s2 * dt * dt : 0.0;
   const auto& p = particles_;
   std::visit(
       [&](const auto& kernel) {
@@ -287,14 +299,91 @@ void Simulation<Dim>::measure_density() {
           const std::size_t first = pairs_.offsets[i];
           const auto row = pairs_.row(i);
           for (std::size_t m = 0; m < row.size(); ++m) {
-            const double w = kernel.w(std::sqrt(squared_distance(p, i, row[m])));
+            const std::uint32_t j = row[m];
+            const double w = kernel.w(std::sqrt(squared_distance(p, i, j)));
             pair_weight_[first + m] = w;
-            density += w;
+            if (lift == 0.0 || i >= fluid || j < fluid) {
+              density += w;
+              continue;
+            }
+            double r2 = 0.0;
+            for (int d = 0; d < Dim; ++d) {
+              const double delta =
+                  p.position[d][j] - p.position[d][i] - (d == Dim - 1 ? lift : 0.0);
+              r2 += delta * delta;
+            }
+            density += kernel.w(std::sqrt(r2));
           }
           number_density_[i] = density;
         });
       },
       pressure_kernel_);
+}
+
+namespace {
+
+// Unmarks the unknowns of every group of rows that no strictly diagonally dominant row
+// reaches through the matrix's couplings (a group without a Dirichlet neighbour); returns
+// how many.
+std::size_t drop_ungrounded(const PoissonSystem& system, std::vector<char>& unknown) {
+  const auto& a = system.matrix;
+  const Eigen::Index n = a.rows();
+  std::vector<char> reached(static_cast<std::size_t>(n), 0);
+  std::vector<Eigen::Index> queue;
+  for (Eigen::Index r = 0; r < n; ++r) {
+    double diagonal = 0.0, off = 0.0;
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor, int>::InnerIterator it(a, r); it; ++it) {
+      if (it.col() == r) {
+        diagonal += it.value();
+      } else {
+        off += std::abs(it.value());
+      }
+    }
+    if (diagonal - off > 1e-9 * diagonal) {
+      reached[static_cast<std::size_t>(r)] = 1;
+      queue.push_back(r);
+    }
+  }
+  while (!queue.empty()) {
+    const Eigen::Index r = queue.back();
+    queue.pop_back();
+    for (Eigen::SparseMatrix<double, Eigen::RowMajor, int>::InnerIterator it(a, r); it; ++it) {
+      if (!reached[static_cast<std::size_t>(it.col())]) {
+        reached[static_cast<std::size_t>(it.col())] = 1;
+        queue.push_back(it.col());
+      }
+    }
+  }
+  std::size_t dropped = 0;
+  for (Eigen::Index r = 0; r < n; ++r) {
+    if (reached[static_cast<std::size_t>(r)]) continue;
+    unknown[system.particle_of_unknown[static_cast<std::size_t>(r)]] = 0;
+    ++dropped;
+  }
+  return dropped;
+}
+
+}  // namespace
+
+template <int Dim>
+bool Simulation<Dim>::one_sided(std::size_t i) const {
+  const double limit = settings_.free_surface_asymmetry * settings_.spacing_m;
+  if (limit == 0.0) return true;
+  std::array<double, Dim> offset{};
+  double total = 0.0;
+  const std::size_t first = pairs_.offsets[i];
+  const auto row = pairs_.row(i);
+  for (std::size_t m = 0; m < row.size(); ++m) {
+    const double w = pair_weight_[first + m];
+    total += w;
+    for (int d = 0; d < Dim; ++d) {
+      offset[d] += w * (particles_.position[d][row[m]] - particles_.position[d][i]);
+    }
+  }
+  if (!(total > 0.0)) return true;
+  double length2 = 0.0;
+  for (int d = 0; d < Dim; ++d) length2 += offset[d] * offset[d];
+  return length2 > limit * limit * total * total;
 }
 
 template <int Dim>
@@ -306,13 +395,14 @@ void Simulation<Dim>::solve_pressure(double dt) {
   const double threshold = settings_.free_surface_beta * n0;
   const double scale = settings_.density_kg_m3 / (dt * dt);
   const bool mixed = settings_.source == SourceTerm::mixed;
+  const bool extrapolated = settings_.boundary == BoundaryPressure::extrapolated;
   surface_.assign(candidates, 0);
   unknown_.assign(candidates, 0);
   source_.assign(candidates, 0.0);
   std::size_t surface_count = 0;
-  for (std::size_t i = 0; i < candidates; ++i) {
+  for (std::size_t i = 0; i < (extrapolated ? fluid : candidates); ++i) {
     const double n = number_density_[i];
-    surface_[i] = n < threshold;
+    surface_[i] = n < threshold && one_sided(i);
     if (surface_[i]) {
       if (i < fluid) ++surface_count;
       continue;
@@ -325,7 +415,7 @@ void Simulation<Dim>::solve_pressure(double dt) {
     const std::size_t first = pairs_.offsets[i];
     const auto row = pairs_.row(i);
     for (std::size_t m = 0; m < row.size(); ++m) {
-      if (row[m] >= candidates || !(pair_weight_[first + m] > 0.0)) continue;
+      if ((!extrapolated && row[m] >= candidates) || !(pair_weight_[first + m] > 0.0)) continue;
       coupled = true;
       if (row[m] < fluid || i < fluid) active = true;
     }
@@ -337,7 +427,23 @@ void Simulation<Dim>::solve_pressure(double dt) {
   }
   const double laplacian_factor =
       2.0 * Dim / (pressure_lattice_.lambda_m2 * pressure_lattice_.number_density);
-  assemble_poisson(pairs_, pair_weight_, unknown_, source_, candidates, laplacian_factor, system_);
+  if (extrapolated) {
+    build_boundary_extrapolation(pairs_, pair_weight_, fluid, particles_.size(),
+                                 particles_.position[Dim - 1],
+                                 settings_.density_kg_m3 * settings_.gravity_m_s2, boundary_);
+    assemble_poisson_extrapolated(pairs_, pair_weight_, unknown_, source_, boundary_,
+                                  laplacian_factor, system_);
+    // A few fluid particles held only by walls (a drop in a corner) have no free surface in
+    // reach: their pressure is undetermined and the matrix singular. They are set to p = 0
+    // like the surface, and the system is formed again without them.
+    if (drop_ungrounded(system_, unknown_) > 0) {
+      assemble_poisson_extrapolated(pairs_, pair_weight_, unknown_, source_, boundary_,
+                                    laplacian_factor, system_);
+    }
+  } else {
+    assemble_poisson(pairs_, pair_weight_, unknown_, source_, candidates, laplacian_factor,
+                     system_);
+  }
   guess_.resize(static_cast<Eigen::Index>(system_.particle_of_unknown.size()));
   for (std::size_t k = 0; k < system_.particle_of_unknown.size(); ++k) {
     guess_[static_cast<Eigen::Index>(k)] = particles_.pressure[system_.particle_of_unknown[k]];
@@ -362,6 +468,7 @@ void Simulation<Dim>::solve_pressure(double dt) {
     }
     particles_.pressure[system_.particle_of_unknown[k]] = std::max(value, 0.0);
   }
+  if (extrapolated) extrapolate_boundary_pressure(boundary_, particles_.pressure);
   last_.unknowns = system_.particle_of_unknown.size();
   last_.surface_particles = surface_count;
   totals_.poisson_iterations += last_.poisson.iterations;
@@ -370,32 +477,91 @@ void Simulation<Dim>::solve_pressure(double dt) {
   if (!last_.poisson.converged) ++totals_.unconverged_solves;
 }
 
+namespace {
+
+// Solves C g = b for a symmetric Dim x Dim matrix; false when C is too close to singular
+// (a particle with neighbours on one line or plane only): det C below 5 % of the product of
+// its diagonal, i.e. a correlation between axes above about 0.97 (2D). A flat surface or a
+// corner keeps det C near that product; two neighbours nearly in line would amplify the
+// pressure differences without bound.
+template <int Dim>
+bool solve_symmetric(const std::array<std::array<double, Dim>, Dim>& c,
+                     const std::array<double, Dim>& b, std::array<double, Dim>& g) {
+  if constexpr (Dim == 2) {
+    const double det = c[0][0] * c[1][1] - c[0][1] * c[1][0];
+    const double scale = c[0][0] * c[1][1];
+    if (!(det > 0.05 * scale) || !(scale > 0.0)) return false;
+    g[0] = (c[1][1] * b[0] - c[0][1] * b[1]) / det;
+    g[1] = (c[0][0] * b[1] - c[1][0] * b[0]) / det;
+  } else {
+    const double m00 = c[1][1] * c[2][2] - c[1][2] * c[2][1];
+    const double m01 = c[1][0] * c[2][2] - c[1][2] * c[2][0];
+    const double m02 = c[1][0] * c[2][1] - c[1][1] * c[2][0];
+    const double det = c[0][0] * m00 - c[0][1] * m01 + c[0][2] * m02;
+    const double scale = c[0][0] * c[1][1] * c[2][2];
+    if (!(det > 0.05 * scale) || !(scale > 0.0)) return false;
+    // Cramer's rule.
+    for (int k = 0; k < 3; ++k) {
+      auto m = c;
+      for (int r = 0; r < 3; ++r) m[r][k] = b[r];
+      g[k] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+              m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+              m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
+             det;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 template <int Dim>
 void Simulation<Dim>::correct(double dt) {
   const std::size_t fluid = particles_.fluid;
   const std::size_t candidates = fluid + particles_.wall;
   const double factor = -dt * Dim / (settings_.density_kg_m3 * pressure_lattice_.number_density);
+  const bool corrected = settings_.gradient == PressureGradient::corrected;
+  // Extrapolated boundary pressures take part in the gradient, dummies too; the smallest
+  // pressure is the fluid's (a wall above the water extrapolates below zero, and would make
+  // the surface particle beside it repel everything).
+  const bool extrapolated = settings_.boundary == BoundaryPressure::extrapolated;
+  const std::size_t sources = extrapolated ? particles_.size() : candidates;
+  const std::size_t lowest_of = extrapolated ? fluid : candidates;
   auto& p = particles_;
   parallel_for(fluid, [&](std::size_t i) {
     const std::size_t first = pairs_.offsets[i];
     const auto row = pairs_.row(i);
     double lowest = p.pressure[i];
     for (std::size_t m = 0; m < row.size(); ++m) {
-      if (row[m] < candidates && pair_weight_[first + m] > 0.0) {
+      if (row[m] < lowest_of && pair_weight_[first + m] > 0.0) {
         lowest = std::min(lowest, p.pressure[row[m]]);
       }
     }
     std::array<double, Dim> gradient{};
+    std::array<std::array<double, Dim>, Dim> moment{};
     for (std::size_t m = 0; m < row.size(); ++m) {
       const std::uint32_t j = row[m];
       const double w = pair_weight_[first + m];
-      if (j >= candidates || w == 0.0) continue;
+      if (j >= sources || w == 0.0) continue;
       const double r2 = squared_distance(p, i, j);
       if (r2 == 0.0) continue;
+      std::array<double, Dim> x{};
+      for (int d = 0; d < Dim; ++d) x[d] = p.position[d][j] - p.position[d][i];
       const double coefficient = (p.pressure[j] - lowest) * w / r2;
-      for (int d = 0; d < Dim; ++d) {
-        gradient[d] += coefficient * (p.position[d][j] - p.position[d][i]);
+      for (int d = 0; d < Dim; ++d) gradient[d] += coefficient * x[d];
+      if (corrected) {
+        for (int a = 0; a < Dim; ++a) {
+          for (int b = 0; b < Dim; ++b) moment[a][b] += x[a] * x[b] * w / r2;
+        }
       }
+    }
+    std::array<double, Dim> solved{};
+    if (corrected && solve_symmetric<Dim>(moment, gradient, solved)) {
+      // C_i^-1 b is the gradient itself; the standard form's d/n0 is its lattice value.
+      for (int d = 0; d < Dim; ++d) {
+        predicted_velocity_[d][i] = -dt * solved[d] / settings_.density_kg_m3;
+      }
+      return;
     }
     for (int d = 0; d < Dim; ++d) predicted_velocity_[d][i] = factor * gradient[d];
   });

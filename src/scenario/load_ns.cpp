@@ -116,11 +116,12 @@ bool whole_spacings(double length, double spacing) {
 
 std::optional<NsSpec> read_ns(const json* v, double gravity) {
   if (v == nullptr) return std::nullopt;
-  const Object o(*v, "/ns",
-                 {"spacing", "tank_height", "density", "viscosity", "courant", "max_time_step",
-                  "pressure_kernel", "velocity_kernel", "free_surface_beta", "source",
-                  "source_gamma", "solver", "collision"},
-                 "an object with at least the particle \"spacing\"");
+  const Object o(
+      *v, "/ns",
+      {"spacing", "tank_height", "density", "viscosity", "courant", "max_time_step",
+       "pressure_kernel", "velocity_kernel", "free_surface_beta", "free_surface_asymmetry",
+       "source", "source_gamma", "pressure_gradient", "boundary_pressure", "solver", "collision"},
+      "an object with at least the particle \"spacing\"");
   NsSpec spec;
   ns::Settings& s = spec.settings;
   s.gravity_m_s2 = gravity;
@@ -151,6 +152,30 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
   s.free_surface_beta = in_range(o, "free_surface_beta", 0.0, true, 1.0, true,
                                  "the share of n0 below which a particle is on the free surface",
                                  s.free_surface_beta);
+  s.free_surface_asymmetry =
+      in_range(o, "free_surface_asymmetry", 0.0, false, 1.0, true,
+               "the neighbours' mean offset, in spacings, above which a particle under beta n0 "
+               "is on the surface (0: number density alone)",
+               s.free_surface_asymmetry);
+  if (choice(o, "pressure_gradient", {"minimum-pressure", "corrected"}, "minimum-pressure") ==
+      "corrected") {
+    s.gradient = ns::PressureGradient::corrected;
+  }
+  if (choice(o, "boundary_pressure", {"poisson", "extrapolated"}, "poisson") == "extrapolated") {
+    s.boundary = ns::BoundaryPressure::extrapolated;
+  }
+  // Both lean on the corrected gradient's balance at the surface and beside walls; with the
+  // standard gradient the water breaks down within a second (docs/ns-dam-break.md).
+  for (const char* key : {"boundary_pressure", "free_surface_asymmetry"}) {
+    const bool asks = key == std::string_view("boundary_pressure")
+                          ? s.boundary == ns::BoundaryPressure::extrapolated
+                          : s.free_surface_asymmetry > 0.0;
+    if (asks && s.gradient != ns::PressureGradient::corrected) {
+      throw ScenarioError(o.path(key),
+                          describe(*o.find(key)) + " with the \"minimum-pressure\" gradient",
+                          "\"pressure_gradient\": \"corrected\" alongside it");
+    }
+  }
   const std::string_view source =
       choice(o, "source", {"number-density", "mixed"}, "number-density");
   if (source == "mixed") {
@@ -183,7 +208,6 @@ void default_tank_height(Scenario& s) {
   // The slack keeps a product such as 2 x 0.2 / 0.01 = 40.000000000000007 at 40 spacings.
   s.ns->tank_height_m = std::ceil(2.0 * deepest / l0 - 1e-9) * l0;
 }
-
 
 namespace {
 

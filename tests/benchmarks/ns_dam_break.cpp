@@ -91,6 +91,9 @@ const char* usage =
     "  --source number-density|mixed  Poisson source (number-density)\n"
     "  --gamma G                      mixed source's relaxation (0.05)\n"
     "  --beta B                       free surface below B n0 (0.97)\n"
+    "  --asymmetry A                  surface only where the mean offset > A l0 (0: off)\n"
+    "  --gradient minimum-pressure|corrected   pressure gradient (minimum-pressure)\n"
+    "  --boundary poisson|extrapolated          wall pressures (poisson)\n"
     "  --preconditioner incomplete-cholesky|diagonal (incomplete-cholesky)\n"
     "  --tolerance TOL                CG relative residual (1e-6)\n"
     "  --max-iterations N             CG iteration cap (1000)\n"
@@ -171,6 +174,24 @@ Options parse(int argc, char** argv) {
       s.source_gamma = to_number(key, value);
     } else if (key == "--beta") {
       s.free_surface_beta = to_number(key, value);
+    } else if (key == "--asymmetry") {
+      s.free_surface_asymmetry = to_number(key, value);
+    } else if (key == "--gradient") {
+      if (value == "minimum-pressure") {
+        s.gradient = ns::PressureGradient::minimum_pressure;
+      } else if (value == "corrected") {
+        s.gradient = ns::PressureGradient::corrected;
+      } else {
+        throw std::invalid_argument("--gradient is minimum-pressure or corrected");
+      }
+    } else if (key == "--boundary") {
+      if (value == "poisson") {
+        s.boundary = ns::BoundaryPressure::poisson;
+      } else if (value == "extrapolated") {
+        s.boundary = ns::BoundaryPressure::extrapolated;
+      } else {
+        throw std::invalid_argument("--boundary is poisson or extrapolated");
+      }
     } else if (key == "--preconditioner") {
       if (value == "incomplete-cholesky") {
         s.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;
@@ -576,6 +597,12 @@ int main(int argc, char** argv) {
           << " velocity_kernel=" << kernel_label(o.settings.velocity_kernel)
           << " source=" << (o.settings.source == ns::SourceTerm::mixed ? "mixed" : "number-density")
           << " beta=" << o.settings.free_surface_beta
+          << " asymmetry=" << o.settings.free_surface_asymmetry << " gradient="
+          << (o.settings.gradient == ns::PressureGradient::corrected ? "corrected"
+                                                                     : "minimum-pressure")
+          << " boundary="
+          << (o.settings.boundary == ns::BoundaryPressure::extrapolated ? "extrapolated"
+                                                                        : "poisson")
           << " collision=" << (o.settings.collision ? "on" : "off") << " threads=" << threads
           << " fluid=" << r.fluid << " wall=" << r.wall << " dummy=" << r.dummy
           << " layers=" << r.solid_layers << " steps=" << t.steps

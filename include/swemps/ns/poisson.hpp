@@ -39,6 +39,11 @@ void assemble_poisson(const neighbors::NeighborList& pairs, std::span<const doub
                       std::span<const char> unknown, std::span<const double> source,
                       std::size_t candidate_count, double laplacian_factor, PoissonSystem& out);
 
+// Numbers the marked particles among the first `count` in order: fills
+// out.particle_of_unknown and returns each particle's unknown (-1 where unmarked).
+std::vector<std::int32_t> number_unknowns(std::span<const char> unknown, std::size_t count,
+                                          PoissonSystem& out);
+
 struct PoissonReport {
   int iterations = 0;
   double relative_residual = 0.0;  // |rhs - A p| / |rhs| as the solver estimates it

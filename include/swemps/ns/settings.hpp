@@ -27,6 +27,39 @@ enum class SourceTerm {
   mixed,
 };
 
+// How the pressure gradient of step 6 is formed.
+enum class PressureGradient {
+  // Koshizuka & Oka: (d/n0) sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2. Every pair repels, which
+  // keeps particles apart, but the sum is exact for a linear pressure only where the
+  // neighbourhood is symmetric: beside a wall or the surface it pushes with a spurious force.
+  minimum_pressure,
+  // The same sum with Khayyer & Gotoh's correction matrix (CMPS; Tamai & Koshizuka's LSMPS
+  // of order one): C_i^-1 sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2, C_i = sum_j x_ij x_ij^T
+  // w_ij / r_ij^2. It splits into C_i^-1 sum_j (p_j - p_i) x_ij w_ij / r_ij^2, exact for any
+  // linear pressure whatever the neighbourhood (so hydrostatic pressure balances gravity on
+  // the free surface, where the standard sum gives about g/2), and (p_i - p_min,i) C_i^-1
+  // sum_j x_ij w_ij / r_ij^2, the pairwise repulsion that keeps particles apart. The
+  // repulsion vanishes on the surface (p_i = p_min = 0) and in any symmetric neighbourhood.
+  // Without it the lattice at rest clusters within half a second (measured,
+  // docs/ns-dam-break.md).
+  corrected,
+};
+
+// Where wall and dummy particles get their pressure.
+enum class BoundaryPressure {
+  // method.md section 3: wall particles are unknowns of the Poisson equation (their rows
+  // sum over fluid and wall neighbours), dummies only pad the number density. The wall
+  // row's one-sided Laplacian fixes the pressure slope the water feels beside it, and not at
+  // the hydrostatic value: at rest the water settles only by compressing, with noise.
+  poisson,
+  // Extrapolated from the fluid along the hydrostatic gradient (boundary_pressure.hpp),
+  // walls and dummies alike, and eliminated from the Poisson equation. Gravity's part of the
+  // predicted motion is then carried by the extrapolation alone, so the number density
+  // against the boundary is measured without it (else it would be counted twice); every
+  // other approach to a wall still compresses and is pushed back.
+  extrapolated,
+};
+
 enum class Preconditioner { diagonal, incomplete_cholesky };
 
 // The pressure Poisson solve: conjugate gradients (the matrix is symmetric positive definite,
@@ -57,8 +90,17 @@ struct Settings {
   KernelChoice pressure_kernel;
   KernelChoice velocity_kernel;
   double free_surface_beta = 0.97;  // n*_i < beta n0: free surface, p = 0
+  // Khayyer, Gotoh & Shao's second test: a particle below beta n0 is on the surface only when
+  // its neighbours' weighted mean offset |sum x_ij w_ij / sum w_ij| exceeds this many l_0 (its
+  // neighbourhood is one-sided). 0 turns the test off (number density alone). The row just
+  // under a flat surface lacks only a few far neighbours, so its number density sits within a
+  // few per cent of beta n0 and would flip on and off the surface (a pressure jump of rho g l_0
+  // per flip); its mean offset is ~0.02 l_0 against ~0.5 l_0 on the surface itself.
+  double free_surface_asymmetry = 0.0;
   SourceTerm source = SourceTerm::number_density;
   double source_gamma = 0.05;  // mixed source only
+  PressureGradient gradient = PressureGradient::minimum_pressure;
+  BoundaryPressure boundary = BoundaryPressure::poisson;
   PoissonSettings solver;
   std::optional<Collision> collision = Collision{};
   // Fluid particles are re-sorted by cell every this many steps (memory locality only).

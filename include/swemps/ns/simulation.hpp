@@ -14,13 +14,16 @@
 //     particles closer than a fraction of l_0 (before the density is measured, so the
 //     Poisson equation sees the corrected positions).
 //  4. Neighbours at x*; number density n*_i = sum_j w_ij with the pressure kernel over all
-//     kinds. n*_i < beta n0 marks the free surface (p = 0).
+//     kinds. n*_i < beta n0 marks the free surface (p = 0), where the optional asymmetry
+//     test (settings.hpp) also finds the neighbourhood one-sided.
 //  5. Pressure Poisson equation (poisson.hpp) for fluid and wall particles that are not on
 //     the surface, solved by preconditioned conjugate gradients warm-started from the last
 //     pressure. Negative pressures are set to zero: water does not hold tension here, and
-//     a negative p_j would pull particles together.
+//     a negative p_j would pull particles together. With BoundaryPressure::extrapolated the
+//     walls are no unknowns: their pressures follow from the fluid's (boundary_pressure.hpp).
 //  6. Pressure gradient (d/n0) sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2 over fluid and
 //     wall neighbours: subtracting the smallest nearby pressure makes every pair repulsive.
+//     PressureGradient::corrected multiplies the sum by the inverse correction matrix.
 //  7. Correction: u = u* - dt grad p / rho, x = x* + dt (u - u*).
 //  8. Fluid that left the tank's box (through a wall, a breakdown sign) is removed and
 //     counted, never silently kept.
@@ -35,6 +38,7 @@
 #include "swemps/kernels/any_kernel.hpp"
 #include "swemps/neighbors/cell_list.hpp"
 #include "swemps/neighbors/neighbor_list.hpp"
+#include "swemps/ns/boundary_pressure.hpp"
 #include "swemps/ns/lattice.hpp"
 #include "swemps/ns/particles.hpp"
 #include "swemps/ns/poisson.hpp"
@@ -120,7 +124,9 @@ class Simulation {
   void find_neighbours();
   void explicit_part(double dt);
   void collide(double dt);
-  void measure_density();
+  void measure_density(double dt);
+  // Whether particle i's neighbourhood is one-sided (the free surface's second test).
+  bool one_sided(std::size_t i) const;
   void solve_pressure(double dt);
   void correct(double dt);
   void remove_escaped();
@@ -145,6 +151,7 @@ class Simulation {
   std::vector<char> surface_, unknown_;
   std::vector<double> source_;
   std::array<std::vector<double>, Dim> predicted_velocity_;
+  BoundaryExtrapolation boundary_;  // BoundaryPressure::extrapolated only
   PoissonSystem system_;
   Eigen::VectorXd guess_;
 };

@@ -1,0 +1,143 @@
+#include "swemps/ns/boundary_pressure.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace swemps::ns {
+
+void build_boundary_extrapolation(const neighbors::NeighborList& pairs,
+                                  std::span<const double> pair_weight, std::size_t fluid_count,
+                                  std::size_t particle_count, std::span<const double> vertical,
+                                  double rho_g, BoundaryExtrapolation& out) {
+  if (pair_weight.size() != pairs.index.size() || pairs.row_count() < fluid_count ||
+      vertical.size() < particle_count || particle_count < fluid_count) {
+    throw std::invalid_argument("boundary pressure: inputs do not match the neighbour list");
+  }
+  const std::size_t boundary_count = particle_count - fluid_count;
+  out.fluid_count = fluid_count;
+  out.offsets.assign(boundary_count + 1, 0);
+  // Two passes over the fluid rows, ascending k, so each boundary particle's list is sorted
+  // and the result does not depend on the thread count that built the neighbour list.
+  for (std::size_t k = 0; k < fluid_count; ++k) {
+    const std::size_t first = pairs.offsets[k];
+    const auto row = pairs.row(k);
+    for (std::size_t m = 0; m < row.size(); ++m) {
+      if (row[m] >= fluid_count && pair_weight[first + m] > 0.0) {
+        ++out.offsets[row[m] - fluid_count + 1];
+      }
+    }
+  }
+  for (std::size_t b = 0; b < boundary_count; ++b) out.offsets[b + 1] += out.offsets[b];
+  out.fluid.resize(out.offsets.back());
+  out.alpha.resize(out.offsets.back());
+  std::vector<std::size_t> cursor(out.offsets.begin(), out.offsets.end() - 1);
+  for (std::size_t k = 0; k < fluid_count; ++k) {
+    const std::size_t first = pairs.offsets[k];
+    const auto row = pairs.row(k);
+    for (std::size_t m = 0; m < row.size(); ++m) {
+      const double w = pair_weight[first + m];
+      if (row[m] < fluid_count || !(w > 0.0)) continue;
+      const std::size_t slot = cursor[row[m] - fluid_count]++;
+      out.fluid[slot] = static_cast<std::uint32_t>(k);
+      out.alpha[slot] = w;
+    }
+  }
+  out.constant.assign(boundary_count, 0.0);
+  for (std::size_t b = 0; b < boundary_count; ++b) {
+    double total = 0.0;
+    for (std::size_t s = out.offsets[b]; s < out.offsets[b + 1]; ++s) total += out.alpha[s];
+    if (!(total > 0.0)) continue;
+    const double height = vertical[fluid_count + b];
+    double lift = 0.0;
+    for (std::size_t s = out.offsets[b]; s < out.offsets[b + 1]; ++s) {
+      out.alpha[s] /= total;
+      lift += out.alpha[s] * (vertical[out.fluid[s]] - height);
+    }
+    out.constant[b] = rho_g * lift;
+  }
+}
+
+void assemble_poisson_extrapolated(const neighbors::NeighborList& pairs,
+                                   std::span<const double> pair_weight,
+                                   std::span<const char> unknown, std::span<const double> source,
+                                   const BoundaryExtrapolation& boundary, double laplacian_factor,
+                                   PoissonSystem& out) {
+  const std::size_t fluid_count = boundary.fluid_count;
+  if (pair_weight.size() != pairs.index.size() || unknown.size() < fluid_count ||
+      source.size() < fluid_count || pairs.row_count() < fluid_count) {
+    throw std::invalid_argument("poisson: inputs do not match the neighbour list");
+  }
+  if (!(laplacian_factor > 0.0)) throw std::invalid_argument("poisson: laplacian factor <= 0");
+  const std::vector<std::int32_t> unknown_of_particle = number_unknowns(unknown, fluid_count, out);
+  const auto n = static_cast<int>(out.particle_of_unknown.size());
+  const double to_system = -1.0 / laplacian_factor;
+  out.rhs.resize(n);
+
+  // Each row is gathered, sorted and merged (a fluid neighbour k is reached directly and
+  // through every boundary particle the two share), then appended in compressed form.
+  std::vector<int> row_start(static_cast<std::size_t>(n) + 1, 0);
+  std::vector<std::pair<int, double>> entries, row;
+  for (int r = 0; r < n; ++r) {
+    const std::size_t i = out.particle_of_unknown[static_cast<std::size_t>(r)];
+    row.clear();
+    double diagonal = 0.0, lifted = 0.0;
+    const std::size_t first = pairs.offsets[i];
+    const auto neighbours = pairs.row(i);
+    for (std::size_t m = 0; m < neighbours.size(); ++m) {
+      const std::uint32_t j = neighbours[m];
+      const double w = pair_weight[first + m];
+      if (!(w > 0.0)) continue;
+      diagonal += w;
+      if (j < fluid_count) {
+        if (unknown_of_particle[j] >= 0) row.emplace_back(unknown_of_particle[j], -w);
+        continue;
+      }
+      const std::size_t b = j - fluid_count;
+      lifted += w * boundary.constant[b];
+      for (std::size_t s = boundary.offsets[b]; s < boundary.offsets[b + 1]; ++s) {
+        const std::int32_t column = unknown_of_particle[boundary.fluid[s]];
+        if (column >= 0) row.emplace_back(column, -w * boundary.alpha[s]);
+      }
+    }
+    row.emplace_back(r, diagonal);
+    std::sort(row.begin(), row.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [column, value] : row) {
+      if (!entries.empty() && static_cast<int>(entries.size()) > row_start[r] &&
+          entries.back().first == column) {
+        entries.back().second += value;
+      } else {
+        entries.emplace_back(column, value);
+      }
+    }
+    row_start[static_cast<std::size_t>(r) + 1] = static_cast<int>(entries.size());
+    out.rhs[r] = to_system * source[i] + lifted;
+  }
+  auto& a = out.matrix;
+  a.resize(n, n);
+  a.resizeNonZeros(static_cast<Eigen::Index>(entries.size()));
+  std::copy(row_start.begin(), row_start.end(), a.outerIndexPtr());
+  for (std::size_t s = 0; s < entries.size(); ++s) {
+    a.innerIndexPtr()[s] = entries[s].first;
+    a.valuePtr()[s] = entries[s].second;
+  }
+}
+
+void extrapolate_boundary_pressure(const BoundaryExtrapolation& boundary,
+                                   std::span<double> pressure) {
+  const std::size_t boundary_count = boundary.constant.size();
+  if (pressure.size() < boundary.fluid_count + boundary_count) {
+    throw std::invalid_argument("boundary pressure: pressure field too short");
+  }
+  for (std::size_t b = 0; b < boundary_count; ++b) {
+    double value = 0.0;
+    for (std::size_t s = boundary.offsets[b]; s < boundary.offsets[b + 1]; ++s) {
+      value += boundary.alpha[s] * pressure[boundary.fluid[s]];
+    }
+    pressure[boundary.fluid_count + b] =
+        boundary.offsets[b + 1] > boundary.offsets[b] ? value + boundary.constant[b] : 0.0;
+  }
+}
+
+}  // namespace swemps::ns
