@@ -101,8 +101,7 @@ void assemble_poisson_extrapolated(const neighbors::NeighborList& pairs,
       }
     }
     row.emplace_back(r, diagonal);
-    std::sort(row.begin(), row.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
+    sort_row(row);
     for (const auto& [column, value] : row) {
       if (!entries.empty() && static_cast<int>(entries.size()) > row_start[r] &&
           entries.back().first == column) {

@@ -10,6 +10,15 @@
 
 namespace swemps::ns {
 
+void sort_row(std::vector<std::pair<int, double>>& row) {
+  for (std::size_t a = 1; a < row.size(); ++a) {
+    const auto entry = row[a];
+    std::size_t b = a;
+    for (; b > 0 && row[b - 1].first > entry.first; --b) row[b] = row[b - 1];
+    row[b] = entry;
+  }
+}
+
 std::vector<std::int32_t> number_unknowns(std::span<const char> unknown, std::size_t count,
                                           PoissonSystem& out) {
   std::vector<std::int32_t> unknown_of_particle(count, -1);
@@ -67,7 +76,7 @@ void assemble_poisson(const neighbors::NeighborList& pairs, std::span<const doub
       if (unknown_of_particle[j] >= 0) row.emplace_back(unknown_of_particle[j], -w);
     }
     row.emplace_back(k, diagonal);
-    std::sort(row.begin(), row.end());
+    sort_row(row);
     int slot = row_start[static_cast<std::size_t>(k)];
     for (const auto& [column, value] : row) {
       a.innerIndexPtr()[slot] = column;
