@@ -33,9 +33,11 @@ void check_settings(const Settings& s) {
   require(s.max_time_step_s > 0.0, "max time step must be > 0");
   require(s.free_surface_beta > 0.0 && s.free_surface_beta < 1.0, "beta must be in (0, 1)");
   require(s.source_gamma >= 0.0 && s.source_gamma <= 1.0, "gamma must be in [0, 1]");
+  require(s.repulsion_distance_spacings > 0.0 && s.repulsion_distance_spacings <= 8.0,
+          "repulsion distance must be in (0, 8] spacings");
   require(s.free_surface_asymmetry >= 0.0 && s.free_surface_asymmetry < 1.0,
           "free-surface asymmetry must be in [0, 1) spacings");
-  require(s.gradient == PressureGradient::corrected ||
+  require(s.gradient != PressureGradient::minimum_pressure ||
               (s.boundary == BoundaryPressure::poisson && s.free_surface_asymmetry == 0.0),
           "extrapolated boundary pressures and the free-surface asymmetry test need the "
           "corrected pressure gradient");
@@ -520,19 +522,22 @@ void Simulation<Dim>::correct(double dt) {
   const std::size_t fluid = particles_.fluid;
   const std::size_t candidates = fluid + particles_.wall;
   const double factor = -dt * Dim / (settings_.density_kg_m3 * pressure_lattice_.number_density);
-  const bool corrected = settings_.gradient == PressureGradient::corrected;
+  const bool corrected = settings_.gradient != PressureGradient::minimum_pressure;
+  const bool repulsive = settings_.gradient != PressureGradient::corrected;
   // Extrapolated boundary pressures take part in the gradient, dummies too; the smallest
   // pressure is the fluid's (a wall above the water extrapolates below zero, and would make
   // the surface particle beside it repel everything).
   const bool extrapolated = settings_.boundary == BoundaryPressure::extrapolated;
   const std::size_t sources = extrapolated ? particles_.size() : candidates;
   const std::size_t lowest_of = extrapolated ? fluid : candidates;
+  const double reach = settings_.repulsion_distance_spacings * settings_.spacing_m;
+  const double repulsion_reach2 = reach * reach;
   auto& p = particles_;
   parallel_for(fluid, [&](std::size_t i) {
     const std::size_t first = pairs_.offsets[i];
     const auto row = pairs_.row(i);
     double lowest = p.pressure[i];
-    for (std::size_t m = 0; m < row.size(); ++m) {
+    for (std::size_t m = 0; m < row.size() && repulsive; ++m) {
       if (row[m] < lowest_of && pair_weight_[first + m] > 0.0) {
         lowest = std::min(lowest, p.pressure[row[m]]);
       }
@@ -547,7 +552,13 @@ void Simulation<Dim>::correct(double dt) {
       if (r2 == 0.0) continue;
       std::array<double, Dim> x{};
       for (int d = 0; d < Dim; ++d) x[d] = p.position[d][j] - p.position[d][i];
-      const double coefficient = (p.pressure[j] - lowest) * w / r2;
+      // p_j - p_min = (p_j - p_i) + (p_i - p_min): with the correction matrix the second
+      // part, the repulsion, acts only between pairs closer than the repulsion distance.
+      const double coefficient =
+          (corrected ? p.pressure[j] - p.pressure[i] +
+                           (r2 < repulsion_reach2 ? p.pressure[i] - lowest : 0.0)
+                     : p.pressure[j] - lowest) *
+          w / r2;
       for (int d = 0; d < Dim; ++d) gradient[d] += coefficient * x[d];
       if (corrected) {
         for (int a = 0; a < Dim; ++a) {

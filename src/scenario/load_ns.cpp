@@ -116,12 +116,12 @@ bool whole_spacings(double length, double spacing) {
 
 std::optional<NsSpec> read_ns(const json* v, double gravity) {
   if (v == nullptr) return std::nullopt;
-  const Object o(
-      *v, "/ns",
-      {"spacing", "tank_height", "density", "viscosity", "courant", "max_time_step",
-       "pressure_kernel", "velocity_kernel", "free_surface_beta", "free_surface_asymmetry",
-       "source", "source_gamma", "pressure_gradient", "boundary_pressure", "solver", "collision"},
-      "an object with at least the particle \"spacing\"");
+  const Object o(*v, "/ns",
+                 {"spacing", "tank_height", "density", "viscosity", "courant", "max_time_step",
+                  "pressure_kernel", "velocity_kernel", "free_surface_beta",
+                  "free_surface_asymmetry", "source", "source_gamma", "pressure_gradient",
+                  "repulsion_distance", "boundary_pressure", "solver", "collision"},
+                 "an object with at least the particle \"spacing\"");
   NsSpec spec;
   ns::Settings& s = spec.settings;
   s.gravity_m_s2 = gravity;
@@ -157,9 +157,20 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
                "the neighbours' mean offset, in spacings, above which a particle under beta n0 "
                "is on the surface (0: number density alone)",
                s.free_surface_asymmetry);
-  if (choice(o, "pressure_gradient", {"minimum-pressure", "corrected"}, "minimum-pressure") ==
-      "corrected") {
-    s.gradient = ns::PressureGradient::corrected;
+  const std::string_view gradient =
+      choice(o, "pressure_gradient", {"minimum-pressure", "corrected", "corrected-repulsive"},
+             "minimum-pressure");
+  if (gradient == "corrected") s.gradient = ns::PressureGradient::corrected;
+  if (gradient == "corrected-repulsive") {
+    s.gradient = ns::PressureGradient::corrected_repulsive;
+    s.repulsion_distance_spacings = in_range(o, "repulsion_distance", 0.0, true, 8.0, false,
+                                             "the distance, in spacings, under which pairs repel",
+                                             s.repulsion_distance_spacings);
+  } else if (o.find("repulsion_distance") != nullptr) {
+    throw ScenarioError(o.path("repulsion_distance"),
+                        "a \"repulsion_distance\" without the \"corrected-repulsive\" gradient",
+                        "no \"repulsion_distance\" here (it goes with \"pressure_gradient\": "
+                        "\"corrected-repulsive\")");
   }
   if (choice(o, "boundary_pressure", {"poisson", "extrapolated"}, "poisson") == "extrapolated") {
     s.boundary = ns::BoundaryPressure::extrapolated;
@@ -170,10 +181,10 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
     const bool asks = key == std::string_view("boundary_pressure")
                           ? s.boundary == ns::BoundaryPressure::extrapolated
                           : s.free_surface_asymmetry > 0.0;
-    if (asks && s.gradient != ns::PressureGradient::corrected) {
+    if (asks && s.gradient == ns::PressureGradient::minimum_pressure) {
       throw ScenarioError(o.path(key),
                           describe(*o.find(key)) + " with the \"minimum-pressure\" gradient",
-                          "\"pressure_gradient\": \"corrected\" alongside it");
+                          "a corrected \"pressure_gradient\" alongside it");
     }
   }
   const std::string_view source =

@@ -91,8 +91,9 @@ const char* usage =
     "  --source number-density|mixed  Poisson source (number-density)\n"
     "  --gamma G                      mixed source's relaxation (0.05)\n"
     "  --beta B                       free surface below B n0 (0.97)\n"
+    "  --repulsion R                  corrected-repulsive: pairs closer than R l0 repel (0.9)\n"
     "  --asymmetry A                  surface only where the mean offset > A l0 (0: off)\n"
-    "  --gradient minimum-pressure|corrected   pressure gradient (minimum-pressure)\n"
+    "  --gradient minimum-pressure|corrected|corrected-repulsive (minimum-pressure)\n"
     "  --boundary poisson|extrapolated          wall pressures (poisson)\n"
     "  --preconditioner incomplete-cholesky|diagonal (incomplete-cholesky)\n"
     "  --tolerance TOL                CG relative residual (1e-6)\n"
@@ -174,6 +175,8 @@ Options parse(int argc, char** argv) {
       s.source_gamma = to_number(key, value);
     } else if (key == "--beta") {
       s.free_surface_beta = to_number(key, value);
+    } else if (key == "--repulsion") {
+      s.repulsion_distance_spacings = to_number(key, value);
     } else if (key == "--asymmetry") {
       s.free_surface_asymmetry = to_number(key, value);
     } else if (key == "--gradient") {
@@ -181,8 +184,11 @@ Options parse(int argc, char** argv) {
         s.gradient = ns::PressureGradient::minimum_pressure;
       } else if (value == "corrected") {
         s.gradient = ns::PressureGradient::corrected;
+      } else if (value == "corrected-repulsive") {
+        s.gradient = ns::PressureGradient::corrected_repulsive;
       } else {
-        throw std::invalid_argument("--gradient is minimum-pressure or corrected");
+        throw std::invalid_argument(
+            "--gradient is minimum-pressure, corrected or corrected-repulsive");
       }
     } else if (key == "--boundary") {
       if (value == "poisson") {
@@ -599,7 +605,9 @@ int main(int argc, char** argv) {
           << " beta=" << o.settings.free_surface_beta
           << " asymmetry=" << o.settings.free_surface_asymmetry << " gradient="
           << (o.settings.gradient == ns::PressureGradient::corrected ? "corrected"
-                                                                     : "minimum-pressure")
+              : o.settings.gradient == ns::PressureGradient::corrected_repulsive
+                  ? "corrected-repulsive"
+                  : "minimum-pressure")
           << " boundary="
           << (o.settings.boundary == ns::BoundaryPressure::extrapolated ? "extrapolated"
                                                                         : "poisson")

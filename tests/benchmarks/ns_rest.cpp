@@ -4,9 +4,10 @@
 //
 //   swemps-ns-rest [dimension 2|3] [end_time_s] [spacing_m] [key=value ...]
 //
-// Keys change the defaults: source=number-density|mixed, gamma=G, gradient=minimum|corrected,
-// boundary=poisson|extrapolated, asymmetry=A, kernel=NAME, support=S, beta=B, courant=C,
-// collision=off, trace=on (one line per sample).
+// Keys change the defaults: source=number-density|mixed, gamma=G,
+// gradient=minimum|corrected|corrected-repulsive, boundary=poisson|extrapolated, repulsion=R,
+// asymmetry=A, kernel=NAME, support=S, beta=B, courant=C, collision=off, trace=on (one line per
+// sample).
 //
 // The tank is 0.4 m long (3D: 0.2 m wide) with 0.2 m of water; floor probes a quarter, half
 // and three quarters of the way along, on the wall particles' row half a spacing below the
@@ -42,8 +43,9 @@ bool apply_option(const std::string& argument, ns::Settings& s) {
   } else if (key == "gamma") {
     s.source_gamma = number;
   } else if (key == "gradient") {
-    s.gradient = value == "corrected" ? ns::PressureGradient::corrected
-                                      : ns::PressureGradient::minimum_pressure;
+    s.gradient = value == "corrected"             ? ns::PressureGradient::corrected
+                 : value == "corrected-repulsive" ? ns::PressureGradient::corrected_repulsive
+                                                  : ns::PressureGradient::minimum_pressure;
   } else if (key == "kernel") {
     const auto type = kernels::kernel_type_from_name(value);
     if (!type) return false;
@@ -52,6 +54,8 @@ bool apply_option(const std::string& argument, ns::Settings& s) {
   } else if (key == "support") {
     s.pressure_kernel.support_spacings = number;
     s.velocity_kernel.support_spacings = number;
+  } else if (key == "repulsion") {
+    s.repulsion_distance_spacings = number;
   } else if (key == "asymmetry") {
     s.free_surface_asymmetry = number;
   } else if (key == "boundary") {

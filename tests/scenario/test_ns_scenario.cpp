@@ -103,13 +103,18 @@ std::vector<Broken> broken_ns_scenes() {
        "/ns/free_surface_beta", "found 1, expected a number in (0, 1)"},
       {"extrapolated walls with the standard gradient",
        ns_edited([](json& s) { s["ns"]["boundary_pressure"] = "extrapolated"; }),
-       "/ns/boundary_pressure", "\"pressure_gradient\": \"corrected\" alongside it"},
+       "/ns/boundary_pressure", "a corrected \"pressure_gradient\" alongside it"},
       {"asymmetry test with the standard gradient",
        ns_edited([](json& s) { s["ns"]["free_surface_asymmetry"] = 0.2; }),
-       "/ns/free_surface_asymmetry", "\"pressure_gradient\": \"corrected\" alongside it"},
+       "/ns/free_surface_asymmetry", "a corrected \"pressure_gradient\" alongside it"},
       {"unknown gradient",
        ns_edited([](json& s) { s["ns"]["pressure_gradient"] = "least-squares"; }),
        "/ns/pressure_gradient", "\"corrected\""},
+      {"repulsion distance without its gradient", ns_edited([](json& s) {
+         s["ns"]["pressure_gradient"] = "corrected";
+         s["ns"]["repulsion_distance"] = 0.9;
+       }),
+       "/ns/repulsion_distance", "it goes with \"pressure_gradient\": \"corrected-repulsive\""},
       {"courant of 0", ns_edited([](json& s) { s["ns"]["courant"] = 0; }), "/ns/courant",
        "found 0, expected a number in (0, 1]"},
       {"negative viscosity", ns_edited([](json& s) { s["ns"]["viscosity"] = -1e-6; }),
@@ -249,6 +254,7 @@ TEST_CASE("the ns block takes the solver's own defaults", "[scenario]") {
   CHECK(got.free_surface_beta == defaults.free_surface_beta);
   CHECK(got.free_surface_asymmetry == defaults.free_surface_asymmetry);
   CHECK(got.gradient == defaults.gradient);
+  CHECK(got.repulsion_distance_spacings == defaults.repulsion_distance_spacings);
   CHECK(got.boundary == defaults.boundary);
   CHECK(got.source == defaults.source);
   CHECK(got.source_gamma == defaults.source_gamma);
@@ -281,7 +287,8 @@ TEST_CASE("every ns key arrives as given", "[scenario]") {
       "pressure_kernel": {"type": "hyperbolic", "support": 3.1, "kappa": 4, "theta": 2},
       "velocity_kernel": {"type": "hyperbolic-sph", "support": 2.5, "kappa": 3},
       "free_surface_beta": 0.95, "source": "mixed", "source_gamma": 0.1,
-      "free_surface_asymmetry": 0.25, "pressure_gradient": "corrected",
+      "free_surface_asymmetry": 0.25, "pressure_gradient": "corrected-repulsive",
+      "repulsion_distance": 0.8,
       "boundary_pressure": "extrapolated",
       "solver": {"preconditioner": "diagonal", "tolerance": 1e-8, "max_iterations": 300},
       "collision": {"distance": 0.4, "restitution": 0.5}
@@ -306,7 +313,8 @@ TEST_CASE("every ns key arrives as given", "[scenario]") {
   CHECK(got.source == ns::SourceTerm::mixed);
   CHECK(got.source_gamma == 0.1);
   CHECK(got.free_surface_asymmetry == 0.25);
-  CHECK(got.gradient == ns::PressureGradient::corrected);
+  CHECK(got.gradient == ns::PressureGradient::corrected_repulsive);
+  CHECK(got.repulsion_distance_spacings == 0.8);
   CHECK(got.boundary == ns::BoundaryPressure::extrapolated);
   CHECK(got.solver.preconditioner == ns::Preconditioner::diagonal);
   CHECK(got.solver.relative_tolerance == 1e-8);

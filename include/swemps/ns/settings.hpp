@@ -31,18 +31,25 @@ enum class SourceTerm {
 enum class PressureGradient {
   // Koshizuka & Oka: (d/n0) sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2. Every pair repels, which
   // keeps particles apart, but the sum is exact for a linear pressure only where the
-  // neighbourhood is symmetric: beside a wall or the surface it pushes with a spurious force.
+  // neighbourhood is symmetric: beside a wall or the surface it pushes with a spurious force
+  // (about g/2 of lift on a surface particle).
   minimum_pressure,
-  // The same sum with Khayyer & Gotoh's correction matrix (CMPS; Tamai & Koshizuka's LSMPS
-  // of order one): C_i^-1 sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2, C_i = sum_j x_ij x_ij^T
-  // w_ij / r_ij^2. It splits into C_i^-1 sum_j (p_j - p_i) x_ij w_ij / r_ij^2, exact for any
-  // linear pressure whatever the neighbourhood (so hydrostatic pressure balances gravity on
-  // the free surface, where the standard sum gives about g/2), and (p_i - p_min,i) C_i^-1
-  // sum_j x_ij w_ij / r_ij^2, the pairwise repulsion that keeps particles apart. The
-  // repulsion vanishes on the surface (p_i = p_min = 0) and in any symmetric neighbourhood.
-  // Without it the lattice at rest clusters within half a second (measured,
-  // docs/ns-dam-break.md).
+  // First-order corrected (Khayyer & Gotoh's CMPS correction matrix; Tamai & Koshizuka's
+  // LSMPS of order one): C_i^-1 sum_j (p_j - p_i) x_ij w_ij / r_ij^2, C_i = sum_j x_ij
+  // x_ij^T w_ij / r_ij^2. Exact for any linear pressure whatever the neighbourhood, so with
+  // extrapolated walls the lattice at rest is a discrete equilibrium. No pairwise repulsion:
+  // with the standard kernel at 2.1 l0 particles cluster (the dam break breaks down); with
+  // Sheu's quartic kernel or a wide support it runs (docs/ns-dam-break.md, "Water at rest").
   corrected,
+  // The corrected gradient plus the minimum-pressure repulsion between close pairs only:
+  // C_i^-1 sum_j [(p_j - p_i) + (p_i - p_min,i) [r_ij < r_rep]] x_ij w_ij / r_ij^2, r_rep =
+  // repulsion_distance_spacings l_0. On a lattice (every pair at least l_0 apart) it is the
+  // corrected gradient, exact for a linear pressure, so water at rest stays at rest; where
+  // particles crowd closer than r_rep the repulsion pushes them apart, as the standard sum
+  // does, so a dam break stays stable with any kernel. With the repulsion between all pairs
+  // (r_rep at the support) a fluid particle facing a wall particle is pushed along the wall
+  // by the fixed wall lattice, and at rest that grows (e-fold in about 0.05 s).
+  corrected_repulsive,
 };
 
 // Where wall and dummy particles get their pressure.
@@ -100,6 +107,7 @@ struct Settings {
   SourceTerm source = SourceTerm::number_density;
   double source_gamma = 0.05;  // mixed source only
   PressureGradient gradient = PressureGradient::minimum_pressure;
+  double repulsion_distance_spacings = 0.9;  // corrected_repulsive only
   BoundaryPressure boundary = BoundaryPressure::poisson;
   PoissonSettings solver;
   std::optional<Collision> collision = Collision{};

@@ -23,7 +23,8 @@
 //     walls are no unknowns: their pressures follow from the fluid's (boundary_pressure.hpp).
 //  6. Pressure gradient (d/n0) sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2 over fluid and
 //     wall neighbours: subtracting the smallest nearby pressure makes every pair repulsive.
-//     PressureGradient::corrected multiplies the sum by the inverse correction matrix.
+//     The corrected variants (settings.hpp) apply the inverse correction matrix to the sum
+//     of p_j - p_i, with the p_min repulsion only between close pairs or not at all.
 //  7. Correction: u = u* - dt grad p / rho, x = x* + dt (u - u*).
 //  8. Fluid that left the tank's box (through a wall, a breakdown sign) is removed and
 //     counted, never silently kept.
