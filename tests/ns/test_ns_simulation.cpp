@@ -240,8 +240,10 @@ TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 2D, 10
 }
 
 TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 1 s", "[ns]") {
-  // 10 x 10 x 20 particles: l0/H = 0.05 as in 2D; 1 s keeps the test short (the 10 s run is
-  // measured with swemps-ns-rest).
+  // 10 x 10 x 20 particles: l0/H = 0.05 as in 2D. Only the first second: after it a mode
+  // grows in the interior and by 10 s particles run at sqrt(g H) (worst sample 9 %), which
+  // issue 20 leaves open (docs/ns-dam-break.md, "Water at rest"). This test guards what
+  // holds: the discrete equilibrium at the start.
   const auto [worst, fastest] = rest_in_tank<3>({0.1, 0.1, 0.3}, 0.2, 1.0);
   CHECK(worst < 0.02);
   CHECK(fastest < 0.01);
