@@ -103,8 +103,7 @@ void assemble_poisson_extrapolated(const neighbors::NeighborList& pairs,
     row.emplace_back(r, diagonal);
     sort_row(row);
     for (const auto& [column, value] : row) {
-      if (!entries.empty() && static_cast<int>(entries.size()) > row_start[r] &&
-          entries.back().first == column) {
+      if (static_cast<int>(entries.size()) > row_start[r] && entries.back().first == column) {
         entries.back().second += value;
       } else {
         entries.emplace_back(column, value);

@@ -1,5 +1,6 @@
 #include "swemps/ns/simulation.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -489,29 +490,16 @@ namespace {
 template <int Dim>
 bool solve_symmetric(const std::array<std::array<double, Dim>, Dim>& c,
                      const std::array<double, Dim>& b, std::array<double, Dim>& g) {
-  if constexpr (Dim == 2) {
-    const double det = c[0][0] * c[1][1] - c[0][1] * c[1][0];
-    const double scale = c[0][0] * c[1][1];
-    if (!(det > 0.05 * scale) || !(scale > 0.0)) return false;
-    g[0] = (c[1][1] * b[0] - c[0][1] * b[1]) / det;
-    g[1] = (c[0][0] * b[1] - c[1][0] * b[0]) / det;
-  } else {
-    const double m00 = c[1][1] * c[2][2] - c[1][2] * c[2][1];
-    const double m01 = c[1][0] * c[2][2] - c[1][2] * c[2][0];
-    const double m02 = c[1][0] * c[2][1] - c[1][1] * c[2][0];
-    const double det = c[0][0] * m00 - c[0][1] * m01 + c[0][2] * m02;
-    const double scale = c[0][0] * c[1][1] * c[2][2];
-    if (!(det > 0.05 * scale) || !(scale > 0.0)) return false;
-    // Cramer's rule.
-    for (int k = 0; k < 3; ++k) {
-      auto m = c;
-      for (int r = 0; r < 3; ++r) m[r][k] = b[r];
-      g[k] = (m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-              m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-              m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])) /
-             det;
-    }
+  Eigen::Matrix<double, Dim, Dim> matrix;
+  double scale = 1.0;
+  for (int r = 0; r < Dim; ++r) {
+    for (int k = 0; k < Dim; ++k) matrix(r, k) = c[r][k];
+    scale *= c[r][r];
   }
+  if (!(scale > 0.0) || !(matrix.determinant() > 0.05 * scale)) return false;
+  const Eigen::Matrix<double, Dim, 1> solved =
+      matrix.inverse() * Eigen::Map<const Eigen::Matrix<double, Dim, 1>>(b.data());
+  for (int d = 0; d < Dim; ++d) g[d] = solved[d];
   return true;
 }
 
