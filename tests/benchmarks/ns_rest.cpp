@@ -4,10 +4,9 @@
 //
 //   swemps-ns-rest [dimension 2|3] [end_time_s] [spacing_m] [key=value ...]
 //
-// Keys change the defaults: source=number-density|mixed, gamma=G,
-// gradient=minimum|corrected|corrected-repulsive, boundary=poisson|extrapolated, repulsion=R,
-// asymmetry=A, kernel=NAME, support=S, beta=B, courant=C, collision=off, trace=on (one line per
-// sample).
+// Keys change the defaults (ns_options.hpp: source, gamma, gradient, boundary, repulsion,
+// asymmetry, kernel, support, beta, courant, tolerance, preconditioner, collision), and
+// trace=on prints one line per sample.
 //
 // The tank is 0.4 m long (3D: 0.2 m wide) with 0.2 m of water; floor probes a quarter, half
 // and three quarters of the way along, on the wall particles' row half a spacing below the
@@ -22,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "ns_options.hpp"
 #include "swemps/ns/measures.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/ns/tank.hpp"
@@ -32,47 +32,13 @@ using namespace swemps;
 
 bool trace = false;  // trace=on: one line per sample
 
-// Applies key=value arguments to the settings; returns false for an unknown key.
+// The shared keys (ns_options.hpp) and trace=on.
 bool apply_option(const std::string& argument, ns::Settings& s) {
-  const auto eq = argument.find('=');
-  if (eq == std::string::npos) return false;
-  const std::string key = argument.substr(0, eq), value = argument.substr(eq + 1);
-  const double number = std::atof(value.c_str());
-  if (key == "source") {
-    s.source = value == "mixed" ? ns::SourceTerm::mixed : ns::SourceTerm::number_density;
-  } else if (key == "gamma") {
-    s.source_gamma = number;
-  } else if (key == "gradient") {
-    s.gradient = value == "corrected"             ? ns::PressureGradient::corrected
-                 : value == "corrected-repulsive" ? ns::PressureGradient::corrected_repulsive
-                                                  : ns::PressureGradient::minimum_pressure;
-  } else if (key == "kernel") {
-    const auto type = kernels::kernel_type_from_name(value);
-    if (!type) return false;
-    s.pressure_kernel.spec.type = *type;
-    s.velocity_kernel.spec.type = *type;
-  } else if (key == "support") {
-    s.pressure_kernel.support_spacings = number;
-    s.velocity_kernel.support_spacings = number;
-  } else if (key == "repulsion") {
-    s.repulsion_distance_spacings = number;
-  } else if (key == "asymmetry") {
-    s.free_surface_asymmetry = number;
-  } else if (key == "boundary") {
-    s.boundary = value == "extrapolated" ? ns::BoundaryPressure::extrapolated
-                                         : ns::BoundaryPressure::poisson;
-  } else if (key == "beta") {
-    s.free_surface_beta = number;
-  } else if (key == "courant") {
-    s.courant = number;
-  } else if (key == "trace") {
-    trace = value == "on";
-  } else if (key == "collision") {
-    if (value == "off") s.collision.reset();
-  } else {
-    return false;
+  if (argument == "trace=on" || argument == "trace=off") {
+    trace = argument == "trace=on";
+    return true;
   }
-  return true;
+  return benchmarks::apply_ns_option(argument, s);
 }
 
 template <int Dim>

@@ -4,7 +4,10 @@
 // Poisson iterations per step and the time per phase. Not a test: speed depends on the
 // machine and its load, so it is measured here and written down in docs/performance.md.
 //
-//   swemps-ns-speed [end_time_s=1.0] [tolerance=1e-6] [courant=0.2] [preconditioner=ic|diagonal]
+//   swemps-ns-speed [end_time_s=1.0] [key=value ...]
+//
+// with the keys of ns_options.hpp (tolerance=1e-6, courant=0.2, preconditioner=ic|diagonal,
+// and the scheme: kernel, support, source, gradient, boundary, asymmetry, ...).
 
 #include <omp.h>
 
@@ -15,6 +18,7 @@
 #include <ctime>
 #include <string>
 
+#include "ns_options.hpp"
 #include "swemps/ns/measures.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/ns/tank.hpp"
@@ -24,10 +28,13 @@ int main(int argc, char** argv) {
   const double end_time = argc > 1 ? std::atof(argv[1]) : 1.0;
   Settings s;
   s.spacing_m = 0.006;
-  if (argc > 2) s.solver.relative_tolerance = std::atof(argv[2]);
-  if (argc > 3) s.courant = std::atof(argv[3]);
-  if (argc > 4 && std::string(argv[4]) == "diagonal")
-    s.solver.preconditioner = Preconditioner::diagonal;
+  for (int a = 2; a < argc; ++a) {
+    if (!swemps::benchmarks::apply_ns_option(argv[a], s)) {
+      std::fprintf(stderr, "swemps-ns-speed: unknown option '%s' (key=value, see ns_options.hpp)\n",
+                   argv[a]);
+      return 2;
+    }
+  }
 
   TankSpec<2> tank;
   tank.interior.upper = {3.216, 1.2};

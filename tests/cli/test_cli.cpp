@@ -529,8 +529,9 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("model ns (2D x-z section), 100 fluid"));
   CHECK_THAT(r.output, Catch::Contains("the scene's 1 walls are not used"));
+  // The default (well-balanced) scheme's tolerance.
   CHECK_THAT(r.output, Catch::Contains("Poisson: conjugate gradients, incomplete-Cholesky "
-                                       "preconditioner, tolerance 1e-06"));
+                                       "preconditioner, tolerance 0.001"));
   CHECK_THAT(r.output, Catch::Contains("0 unconverged solves"));
   CHECK_THAT(r.output, Catch::Contains("time per phase: sort"));
   const auto nc = dir / "tank.nc";
@@ -602,8 +603,10 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
       CHECK(row[2] >= t.rows[k - 1][2] - 0.005);
       CHECK(row[2] < 0.4);
       CHECK(row[4] >= 1.0);
-      CHECK(row[5] <= 1e-6);
-      CHECK(row[6] >= 90.0);  // the submerged fluid particles and the walls beside them
+      CHECK(row[5] <= 1e-3);
+      // The submerged fluid particles: the walls' pressures are extrapolated, not unknowns.
+      CHECK(row[6] >= 70.0);
+      CHECK(row[6] <= 100.0);
       CHECK(row[7] >= 0.0);
       pressure_sum += row[7];
     }

@@ -101,12 +101,21 @@ std::vector<Broken> broken_ns_scenes() {
        "/ns/pressure_kernel/typ", "(did you mean \"type\"?)"},
       {"beta of 1", ns_edited([](json& s) { s["ns"]["free_surface_beta"] = 1; }),
        "/ns/free_surface_beta", "found 1, expected a number in (0, 1)"},
-      {"extrapolated walls with the standard gradient",
-       ns_edited([](json& s) { s["ns"]["boundary_pressure"] = "extrapolated"; }),
+      {"extrapolated walls with the standard gradient", ns_edited([](json& s) {
+         s["ns"]["pressure_gradient"] = "minimum-pressure";
+         s["ns"]["boundary_pressure"] = "extrapolated";
+       }),
        "/ns/boundary_pressure", "a corrected \"pressure_gradient\" alongside it"},
-      {"asymmetry test with the standard gradient",
-       ns_edited([](json& s) { s["ns"]["free_surface_asymmetry"] = 0.2; }),
+      {"asymmetry test with the standard gradient", ns_edited([](json& s) {
+         s["ns"]["scheme"] = "standard";
+         s["ns"]["free_surface_asymmetry"] = 0.2;
+       }),
        "/ns/free_surface_asymmetry", "a corrected \"pressure_gradient\" alongside it"},
+      {"asymmetry test with the number-density source", ns_edited([](json& s) {
+         s["ns"]["source"] = "number-density";
+         s["ns"]["free_surface_asymmetry"] = 0.2;
+       }),
+       "/ns/free_surface_asymmetry", "\"source\": \"mixed\" alongside it"},
       {"unknown gradient",
        ns_edited([](json& s) { s["ns"]["pressure_gradient"] = "least-squares"; }),
        "/ns/pressure_gradient", "\"corrected\""},
@@ -125,7 +134,10 @@ std::vector<Broken> broken_ns_scenes() {
        "/ns/max_time_step", "expected a number > 0 (seconds)"},
       {"misspelt source", ns_edited([](json& s) { s["ns"]["source"] = "mixd"; }), "/ns/source",
        "one of \"number-density\", \"mixed\" (did you mean \"mixed\"?)"},
-      {"gamma without the mixed source", ns_edited([](json& s) { s["ns"]["source_gamma"] = 0.1; }),
+      {"gamma without the mixed source", ns_edited([](json& s) {
+         s["ns"]["source"] = "number-density";
+         s["ns"]["source_gamma"] = 0.1;
+       }),
        "/ns/source_gamma", "it goes with \"source\": \"mixed\""},
       {"gamma above 1", ns_edited([](json& s) {
          s["ns"]["source"] = "mixed";
@@ -232,38 +244,49 @@ TEST_CASE("a bad kernel name lists every kernel the solver knows", "[scenario]")
   }
 }
 
-TEST_CASE("the ns block takes the solver's own defaults", "[scenario]") {
+namespace {
+
+// What a scene without "scheme" gets (docs/scenario.md).
+constexpr ns::Scheme kDefaultScheme = ns::Scheme::well_balanced;
+
+// Every numerical setting of `got` is the one in `expected` (spacing and gravity aside).
+void check_numerics(const ns::Settings& got, const ns::Settings& expected) {
+  CHECK(got.density_kg_m3 == expected.density_kg_m3);
+  CHECK(got.kinematic_viscosity_m2_s == expected.kinematic_viscosity_m2_s);
+  CHECK(got.courant == expected.courant);
+  CHECK(got.max_time_step_s == expected.max_time_step_s);
+  CHECK(got.pressure_kernel.spec.type == expected.pressure_kernel.spec.type);
+  CHECK(got.pressure_kernel.support_spacings == expected.pressure_kernel.support_spacings);
+  CHECK(got.pressure_kernel.spec.kappa == expected.pressure_kernel.spec.kappa);
+  CHECK(got.pressure_kernel.spec.theta == expected.pressure_kernel.spec.theta);
+  CHECK(got.velocity_kernel.spec.type == expected.velocity_kernel.spec.type);
+  CHECK(got.velocity_kernel.support_spacings == expected.velocity_kernel.support_spacings);
+  CHECK(got.free_surface_beta == expected.free_surface_beta);
+  CHECK(got.free_surface_asymmetry == expected.free_surface_asymmetry);
+  CHECK(got.gradient == expected.gradient);
+  CHECK(got.repulsion_distance_spacings == expected.repulsion_distance_spacings);
+  CHECK(got.boundary == expected.boundary);
+  CHECK(got.source == expected.source);
+  CHECK(got.source_gamma == expected.source_gamma);
+  CHECK(got.solver.preconditioner == expected.solver.preconditioner);
+  CHECK(got.solver.relative_tolerance == expected.solver.relative_tolerance);
+  CHECK(got.solver.max_iterations == expected.solver.max_iterations);
+  REQUIRE(got.collision.has_value());
+  CHECK(got.collision->distance_spacings == expected.collision->distance_spacings);
+  CHECK(got.collision->restitution == expected.collision->restitution);
+}
+
+}  // namespace
+
+TEST_CASE("the ns block takes the default scheme's settings", "[scenario]") {
   const auto s = parse_text(ns_edited([](json& j) { j["gravity"] = 9.8; }));
-  const ns::Settings defaults;
   CHECK(s.model == Model::ns);
   CHECK(s.dimension == 3);
   REQUIRE(s.ns.has_value());
   const ns::Settings& got = s.ns->settings;
   CHECK(got.spacing_m == 0.01);
   CHECK(got.gravity_m_s2 == 9.8);  // the scene's gravity
-  CHECK(got.density_kg_m3 == defaults.density_kg_m3);
-  CHECK(got.kinematic_viscosity_m2_s == defaults.kinematic_viscosity_m2_s);
-  CHECK(got.courant == defaults.courant);
-  CHECK(got.max_time_step_s == defaults.max_time_step_s);
-  CHECK(got.pressure_kernel.spec.type == defaults.pressure_kernel.spec.type);
-  CHECK(got.pressure_kernel.support_spacings == defaults.pressure_kernel.support_spacings);
-  CHECK(got.pressure_kernel.spec.kappa == defaults.pressure_kernel.spec.kappa);
-  CHECK(got.pressure_kernel.spec.theta == defaults.pressure_kernel.spec.theta);
-  CHECK(got.velocity_kernel.spec.type == defaults.velocity_kernel.spec.type);
-  CHECK(got.velocity_kernel.support_spacings == defaults.velocity_kernel.support_spacings);
-  CHECK(got.free_surface_beta == defaults.free_surface_beta);
-  CHECK(got.free_surface_asymmetry == defaults.free_surface_asymmetry);
-  CHECK(got.gradient == defaults.gradient);
-  CHECK(got.repulsion_distance_spacings == defaults.repulsion_distance_spacings);
-  CHECK(got.boundary == defaults.boundary);
-  CHECK(got.source == defaults.source);
-  CHECK(got.source_gamma == defaults.source_gamma);
-  CHECK(got.solver.preconditioner == defaults.solver.preconditioner);
-  CHECK(got.solver.relative_tolerance == defaults.solver.relative_tolerance);
-  CHECK(got.solver.max_iterations == defaults.solver.max_iterations);
-  REQUIRE(got.collision.has_value());
-  CHECK(got.collision->distance_spacings == defaults.collision->distance_spacings);
-  CHECK(got.collision->restitution == defaults.collision->restitution);
+  check_numerics(got, ns::scheme_settings(kDefaultScheme));
   // Twice the deepest water, on the lattice.
   REQUIRE(s.ns->tank_height_m.has_value());
   CHECK(*s.ns->tank_height_m == Approx(0.2));
@@ -271,6 +294,70 @@ TEST_CASE("the ns block takes the solver's own defaults", "[scenario]") {
   CHECK(s.water[0].spacing_m == 0.01);
   REQUIRE(s.output.grid.spacing_m.has_value());
   CHECK(*s.output.grid.spacing_m == Approx(0.02));
+}
+
+TEST_CASE("the ns scheme sets every numerical default, and keys override one by one",
+          "[scenario]") {
+  const auto standard = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "standard"; }));
+  check_numerics(standard.ns->settings, ns::scheme_settings(ns::Scheme::standard));
+  CHECK(standard.ns->settings.gradient == ns::PressureGradient::minimum_pressure);
+
+  const auto balanced = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "well-balanced"; }));
+  const ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced);
+  check_numerics(balanced.ns->settings, expected);
+  CHECK(expected.gradient == ns::PressureGradient::corrected_repulsive);
+  CHECK(expected.boundary == ns::BoundaryPressure::extrapolated);
+  CHECK(expected.pressure_kernel.spec.type == KernelType::sheu_quartic);
+
+  // One key changed, the rest of the scheme kept.
+  const auto courant = parse_text(ns_edited([](json& j) {
+    j["ns"]["scheme"] = "well-balanced";
+    j["ns"]["courant"] = 0.3;
+    j["ns"]["pressure_kernel"] = {{"support", 3.1}};
+  }));
+  ns::Settings changed = expected;
+  changed.courant = 0.3;
+  changed.pressure_kernel.support_spacings = 3.1;
+  changed.velocity_kernel = changed.pressure_kernel;
+  check_numerics(courant.ns->settings, changed);
+
+  // A velocity kernel object is completed from the scheme's kernel, not the pressure one.
+  const auto split = parse_text(ns_edited([](json& j) {
+    j["ns"]["pressure_kernel"] = {{"type", "standard"}};
+    j["ns"]["velocity_kernel"] = {{"support", 3.0}};
+  }));
+  CHECK(split.ns->settings.pressure_kernel.spec.type == KernelType::standard);
+  CHECK(split.ns->settings.velocity_kernel.spec.type ==
+        ns::scheme_settings(kDefaultScheme).velocity_kernel.spec.type);
+  CHECK(split.ns->settings.velocity_kernel.support_spacings == 3.0);
+
+  // The standard gradient turns off what only the corrected one can carry, without an error
+  // (it is the scheme's default, not the scene's request).
+  const auto minimum = parse_text(ns_edited([](json& j) {
+    j["ns"]["scheme"] = "well-balanced";
+    j["ns"]["pressure_gradient"] = "minimum-pressure";
+  }));
+  CHECK(minimum.ns->settings.gradient == ns::PressureGradient::minimum_pressure);
+  CHECK(minimum.ns->settings.boundary == ns::BoundaryPressure::poisson);
+  CHECK(minimum.ns->settings.free_surface_asymmetry == 0.0);
+  CHECK(minimum.ns->settings.source == ns::SourceTerm::mixed);  // the rest stays
+
+  // The number-density source turns off the asymmetry test (it breaks down with it).
+  const auto plain = parse_text(ns_edited([](json& j) {
+    j["ns"]["scheme"] = "well-balanced";
+    j["ns"]["source"] = "number-density";
+  }));
+  CHECK(plain.ns->settings.free_surface_asymmetry == 0.0);
+  CHECK(plain.ns->settings.boundary == ns::BoundaryPressure::extrapolated);
+  CHECK(plain.ns->settings.gradient == ns::PressureGradient::corrected_repulsive);
+
+  try {
+    parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "fast"; }));
+    FAIL("an unknown scheme was accepted");
+  } catch (const ScenarioError& e) {
+    CHECK(e.json_path() == "/ns/scheme");
+    CHECK_THAT(std::string(e.what()), Contains("\"well-balanced\""));
+  }
 }
 
 TEST_CASE("the default tank height is rounded up to whole spacings", "[scenario]") {

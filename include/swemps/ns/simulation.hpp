@@ -99,6 +99,9 @@ class Simulation {
   // Number density n* and free-surface flags of the last step, for fluid and wall particles.
   std::span<const double> number_density() const { return number_density_; }
   std::span<const char> free_surface() const { return surface_; }
+  // The pressure Poisson system of the last step, as it was handed to the solver (for
+  // measuring linear solvers on real systems).
+  const PoissonSystem& poisson_system() const { return system_; }
 
   // courant l_0 / u, with u the larger of the fastest fluid particle and the free-fall speed
   // sqrt(2 g H) over the water's height H; bounded by the viscous limit 0.2 l_0^2 / nu and by
