@@ -33,6 +33,38 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 constexpr const char* kRunStateLabel = "swe-mps Navier-Stokes run";
 
+// The numerical choices of a run in one line, so a log says which scheme made its numbers
+// (the scene's "scheme" and every key that overrode it: docs/scenario.md).
+std::string describe_numerics(const ns::Settings& s) {
+  const auto kernel = [](const ns::KernelChoice& k) {
+    return fmt::format("{} at {} l0", kernels::kernel_type_name(k.spec.type), k.support_spacings);
+  };
+  const bool same_kernels =
+      s.velocity_kernel.spec.type == s.pressure_kernel.spec.type &&
+      s.velocity_kernel.support_spacings == s.pressure_kernel.support_spacings;
+  const char* gradient = s.gradient == ns::PressureGradient::corrected ? "corrected"
+                         : s.gradient == ns::PressureGradient::corrected_repulsive
+                             ? "corrected-repulsive"
+                             : "minimum-pressure";
+  return fmt::format(
+      "kernel {}{}, source {}, gradient {}{}, free surface below {} n0{}, wall pressures {}, "
+      "Courant {}, solver tolerance {}, collisions {}",
+      kernel(s.pressure_kernel),
+      same_kernels ? "" : fmt::format(" ({} for viscosity)", kernel(s.velocity_kernel)),
+      s.source == ns::SourceTerm::mixed ? fmt::format("mixed (gamma {})", s.source_gamma)
+                                        : std::string("number-density"),
+      gradient,
+      s.gradient == ns::PressureGradient::corrected_repulsive
+          ? fmt::format(" (repulsion under {} l0)", s.repulsion_distance_spacings)
+          : "",
+      s.free_surface_beta,
+      s.free_surface_asymmetry > 0.0
+          ? fmt::format(" and one-sided beyond {} l0", s.free_surface_asymmetry)
+          : "",
+      s.boundary == ns::BoundaryPressure::extrapolated ? "extrapolated" : "solved (Poisson)",
+      s.courant, s.solver.relative_tolerance, s.collision ? "on" : "off");
+}
+
 // The plan cell (along one axis) that holds coordinate x, or -1 outside the grid; cells are
 // centred on x0 + i dx, as ns::column_depth bins them.
 long cell_of(double x, double x0, double dx, std::size_t n) {
@@ -173,6 +205,7 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
       tank.interior.upper[0] - tank.interior.lower[0],
       Dim == 3 ? fmt::format(", {} m wide", tank.interior.upper[1] - tank.interior.lower[1]) : "",
       tank.interior.upper[Dim - 1] - floor_z, scene.end_time_s, scene.output.path.string());
+  spdlog::info("model ns numerics: {}", describe_numerics(sim.settings()));
   if (!scene.walls.empty()) {
     spdlog::info(
         "model ns: the tank's walls are the domain's sides and the floor; the scene's {} walls "

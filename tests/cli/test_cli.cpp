@@ -529,7 +529,10 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("model ns (2D x-z section), 100 fluid"));
   CHECK_THAT(r.output, Catch::Contains("the scene's 1 walls are not used"));
-  // The default (well-balanced) scheme's tolerance.
+  // The log names the numerics: the default (well-balanced) scheme's.
+  CHECK_THAT(r.output, Catch::Contains("model ns numerics: kernel sheu-quartic at 2.1 l0, "
+                                       "source mixed (gamma 0.05), gradient corrected-repulsive"));
+  CHECK_THAT(r.output, Catch::Contains("wall pressures extrapolated, Courant 0.4"));
   CHECK_THAT(r.output, Catch::Contains("Poisson: conjugate gradients, incomplete-Cholesky "
                                        "preconditioner, tolerance 0.001"));
   CHECK_THAT(r.output, Catch::Contains("0 unconverged solves"));

@@ -131,6 +131,8 @@ enum class Scheme {
   well_balanced,
 };
 
+// Settings with every numerical choice of `scheme`; the physical constants, the spacing and
+// the largest step keep Settings' defaults, for the caller to set.
 inline Settings scheme_settings(Scheme scheme) {
   Settings s;
   if (scheme == Scheme::standard) return s;
