@@ -42,10 +42,6 @@ std::string describe_numerics(const ns::Settings& s) {
   const bool same_kernels =
       s.velocity_kernel.spec.type == s.pressure_kernel.spec.type &&
       s.velocity_kernel.support_spacings == s.pressure_kernel.support_spacings;
-  const char* gradient = s.gradient == ns::PressureGradient::corrected ? "corrected"
-                         : s.gradient == ns::PressureGradient::corrected_repulsive
-                             ? "corrected-repulsive"
-                             : "minimum-pressure";
   return fmt::format(
       "kernel {}{}, source {}, gradient {}{}, free surface below {} n0{}, wall pressures {}, "
       "Courant {}, solver tolerance {}, collisions {}",
@@ -53,7 +49,7 @@ std::string describe_numerics(const ns::Settings& s) {
       same_kernels ? "" : fmt::format(" ({} for viscosity)", kernel(s.velocity_kernel)),
       s.source == ns::SourceTerm::mixed ? fmt::format("mixed (gamma {})", s.source_gamma)
                                         : std::string("number-density"),
-      gradient,
+      ns::pressure_gradient_name(s.gradient),
       s.gradient == ns::PressureGradient::corrected_repulsive
           ? fmt::format(" (repulsion under {} l0)", s.repulsion_distance_spacings)
           : "",

@@ -161,14 +161,9 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
   s.free_surface_beta = in_range(o, "free_surface_beta", 0.0, true, 1.0, true,
                                  "the share of n0 below which a particle is on the free surface",
                                  s.free_surface_beta);
-  const auto gradient_name = [](ns::PressureGradient g) {
-    return g == ns::PressureGradient::corrected             ? "corrected"
-           : g == ns::PressureGradient::corrected_repulsive ? "corrected-repulsive"
-                                                            : "minimum-pressure";
-  };
   const std::string_view gradient =
       choice(o, "pressure_gradient", {"minimum-pressure", "corrected", "corrected-repulsive"},
-             gradient_name(s.gradient));
+             ns::pressure_gradient_name(s.gradient));
   s.gradient = gradient == "corrected"             ? ns::PressureGradient::corrected
                : gradient == "corrected-repulsive" ? ns::PressureGradient::corrected_repulsive
                                                    : ns::PressureGradient::minimum_pressure;

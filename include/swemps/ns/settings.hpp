@@ -77,6 +77,13 @@ struct PoissonSettings {
   int max_iterations = 1000;
 };
 
+// The scene's name of each gradient (docs/scenario.md), for reading scenes and for logs.
+constexpr const char* pressure_gradient_name(PressureGradient g) {
+  return g == PressureGradient::corrected             ? "corrected"
+         : g == PressureGradient::corrected_repulsive ? "corrected-repulsive"
+                                                      : "minimum-pressure";
+}
+
 // Koshizuka's particle collision: two fluid particles closer than distance_spacings l_0 and
 // approaching each other exchange the approaching part of their relative velocity, keeping
 // (1 + restitution)/2 of it. It keeps the standard kernel's clustering from blowing up.
