@@ -40,12 +40,6 @@ void assemble_poisson(const neighbors::NeighborList& pairs, std::span<const doub
                       std::span<const char> unknown, std::span<const double> source,
                       std::size_t candidate_count, double laplacian_factor, PoissonSystem& out);
 
-// Sorts a row's (column, value) entries by column. Insertion sort: the neighbour list visits
-// cells in order and the fluid is sorted by cell, so rows arrive nearly sorted and this is
-// close to one pass (measured: a tenth less assembly time than std::sort on the 20,000
-// particle dam break).
-void sort_row(std::vector<std::pair<int, double>>& row);
-
 // Numbers the marked particles among the first `count` in order: fills
 // out.particle_of_unknown and returns each particle's unknown (-1 where unmarked).
 std::vector<std::int32_t> number_unknowns(std::span<const char> unknown, std::size_t count,
