@@ -89,6 +89,8 @@ int main(int argc, char** argv) {
     return fail(exit_input, e.what());
   } catch (const swemps::io::CheckpointError& e) {
     return fail(exit_input, std::string("cannot restart: ") + e.what());
+  } catch (const CommandFailed& e) {
+    return fail(e.status(), e.what());
   } catch (const RunStopped& e) {
     return fail(exit_signal + e.signal_number(), e.what());
   } catch (const swemps::swe::SimulationError& e) {

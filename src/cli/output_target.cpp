@@ -5,6 +5,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <system_error>
 
@@ -76,6 +78,23 @@ void check_output_target(const std::filesystem::path& file) {
 
 std::filesystem::path output_option(const std::filesystem::path& given) {
   return given.empty() ? given : std::filesystem::absolute(given).lexically_normal();
+}
+
+void write_whole_file(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::path partial = file;
+  partial += ".partial";
+  {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out) throw OutputError("cannot write " + quoted(partial));
+  }
+  std::error_code ec;
+  std::filesystem::rename(partial, file, ec);
+  if (ec) {
+    throw OutputError("cannot rename " + quoted(partial) + " to " + quoted(file) + ": " +
+                      ec.message());
+  }
 }
 
 }  // namespace swemps::cli

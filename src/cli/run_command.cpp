@@ -7,6 +7,7 @@
 
 #include "swemps/cli/check_command.hpp"
 #include "swemps/cli/compare_command.hpp"
+#include "swemps/cli/ensemble_command.hpp"
 #include "swemps/cli/export_command.hpp"
 #include "swemps/cli/log_file.hpp"
 #include "swemps/cli/output_target.hpp"
@@ -23,6 +24,10 @@ void run(const Options& options, const std::string& command_line) {
   }
   if (options.command == "study") {
     study(options, command_line);
+    return;
+  }
+  if (options.command == "ensemble") {
+    ensemble(options, command_line);
     return;
   }
   if (options.command == "check") {

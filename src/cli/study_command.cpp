@@ -8,7 +8,6 @@
 #include "swemps/cli/study_command.hpp"
 
 #include <omp.h>
-#include <sched.h>
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 #include <sys/prctl.h>
@@ -32,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "swemps/cli/child_processes.hpp"
 #include "swemps/cli/output_target.hpp"
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/run_command.hpp"
@@ -169,16 +169,6 @@ RunRecord run_scene(const scenario::Scenario& scene, const study::Study& study) 
   return r;
 }
 
-void write_all(int fd, const std::string& text) {
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;  // the parent is gone; nobody to tell
-    written += static_cast<std::size_t>(n);
-  }
-}
-
 // The child's whole life: never returns, and leaves through _exit so that nothing the parent
 // set up (buffered output, atexit handlers, the partial table) is flushed or run twice.
 [[noreturn]] void child_main(const scenario::Scenario& scene, const study::Study& study,
@@ -246,72 +236,19 @@ std::vector<std::size_t> start_order(const std::vector<PlannedRun>& runs) {
   return order;
 }
 
-// The cores this process may run on (its affinity mask, which a container or taskset may
-// narrow), without touching OpenMP.
-int usable_cores() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-}
-
-struct Child {
-  pid_t pid;
-  std::size_t run;
-  int result_fd;  // read end of the pipe the record comes through
-  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
-  bool stopped = false;  // killed by the parent for running past the study's time limit
-};
-
+// The run's child: it runs the scene in this program's own copy and writes its record into
+// the pipe.
 Child start_child(const PlannedRun& run, std::size_t index, const study::Study& study,
                   int threads) {
-  int fds[2];
-  if (::pipe(fds) != 0) {
-    throw std::runtime_error(std::string("cannot make a pipe: ") + std::strerror(errno));
-  }
-  // Text the parent has buffered would be written again by a child that flushes it.
-  std::fflush(stdout);
-  std::fflush(stderr);
   const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    const int err = errno;
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw std::runtime_error(std::string("cannot start a run: fork: ") + std::strerror(err));
-  }
-  if (pid == 0) {
-    ::close(fds[0]);
-    child_main(run.scene, study, threads, fds[1], parent);
-  }
-  ::close(fds[1]);  // so that the read end sees end-of-file once the child is gone
-  return {pid, index, fds[0]};
-}
-
-std::string read_all(int fd) {
-  std::string text;
-  char buffer[4096];
-  for (;;) {
-    const ssize_t n = ::read(fd, buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    text.append(buffer, static_cast<std::size_t>(n));
-  }
-  ::close(fd);
-  return text;
+  return fork_child(index,
+                    [&](int write_fd) { child_main(run.scene, study, threads, write_fd, parent); });
 }
 
 // What the wait status says about a child that sent no record.
 std::string lost_child(int status) {
-  if (WIFSIGNALED(status)) {
-    const int signal = WTERMSIG(status);
-    const char* name = strsignal(signal);
-    return "the run's process was killed by signal " + std::to_string(signal) + " (" +
-           (name ? name : "unknown") + ")" +
-           (signal == SIGKILL ? ", perhaps for want of memory" : "");
-  }
-  return "the run's process exited with status " + std::to_string(WEXITSTATUS(status)) +
-         " without a result";
+  return "the run's process " + wait_status_text(status) +
+         (WIFSIGNALED(status) ? std::string() : std::string(" without a result"));
 }
 
 // A finished run: its record and the peak memory the kernel measured for its process.
@@ -320,10 +257,10 @@ struct Row {
   double peak_memory_mib = kNaN;
 };
 
-Row collect(const Child& child, int status, const rusage& usage,
+Row collect(const Child& child, int status, const rusage& usage, const std::string& output,
             std::optional<double> run_time_limit_s) {
   Row row;
-  const auto record = decode(read_all(child.result_fd));
+  const auto record = decode(output);
   if (record) {
     row.record = *record;
   } else if (child.stopped && run_time_limit_s) {
@@ -340,19 +277,9 @@ Row collect(const Child& child, int status, const rusage& usage,
 // ---------------------------------------------------------------------------------------------
 // The table
 
-std::string number_text(double v) { return std::isnan(v) ? "nan" : fmt::format("{:.12g}", v); }
-
-// A text field as CSV has it: quoted when it holds a comma, a quote or a line break.
-std::string text_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
 std::vector<std::string> table_columns() {
-  std::vector<std::string> columns{"run",   "spacing_m",   "splitting_threshold", "scheme",
-                                   "gradient", "kappa", "dissipation", "shifting",
+  std::vector<std::string> columns{"run",      "spacing_m", "splitting_threshold", "scheme",
+                                   "gradient", "kappa",     "dissipation",         "shifting",
                                    "cfl",      "alpha_e"};
   for (const auto& f : kCountFields) columns.emplace_back(f.name);
   columns.emplace_back("peak_memory_mib");
@@ -369,16 +296,14 @@ std::string table_line(std::size_t index, const PlannedRun& run, const Row& row)
   const RunRecord& r = row.record;
   const bool seed = scene.numerics.scheme == swe::SchemeKind::seed;
   std::vector<std::string> fields{
-      std::to_string(index),
-      number_text(study::finest_spacing(scene)),
+      std::to_string(index), number_text(study::finest_spacing(scene)),
       number_text(scene.splitting ? scene.splitting->area_ratio_threshold : kNaN),
       study::scheme_name(scene.numerics.scheme),
       // A scheme's own knobs are blank in the other scheme's rows.
       seed ? study::gradient_name(scene.numerics.gradient) : std::string(),
       seed ? std::string() : number_text(scene.numerics.kappa),
       seed ? std::string() : number_text(scene.numerics.dissipation),
-      seed ? std::string() : number_text(scene.numerics.shifting),
-      number_text(scene.numerics.cfl),
+      seed ? std::string() : number_text(scene.numerics.shifting), number_text(scene.numerics.cfl),
       seed ? number_text(scene.numerics.alpha_e) : std::string()};
   for (const auto& f : kCountFields) fields.push_back(number_text(r.*f.member));
   fields.push_back(number_text(row.peak_memory_mib));
@@ -516,36 +441,26 @@ void stop_overdue(std::vector<Child>& going, std::optional<double> run_time_limi
 // into the table as they finish.
 void run_all(const std::vector<PlannedRun>& runs, const study::Study& study, int jobs, int threads,
              StudyTable& table, SweepProgress& progress) {
-  const std::vector<std::size_t> order = start_order(runs);
-  std::vector<Child> going;
-  std::size_t next = 0, done = 0;
-  while (done < runs.size()) {
-    while (going.size() < static_cast<std::size_t>(jobs) && next < order.size()) {
-      going.push_back(start_child(runs[order[next]], order[next], study, threads));
-      ++next;
-    }
-    int status = 0;
-    rusage usage{};
-    const pid_t pid = ::wait4(-1, &status, WNOHANG, &usage);
-    if (pid < 0 && errno != EINTR) {
-      throw std::runtime_error(std::string("waiting for a run: ") + std::strerror(errno));
-    }
-    const auto child =
-        std::find_if(going.begin(), going.end(), [&](const Child& c) { return c.pid == pid; });
-    if (pid <= 0 || child == going.end()) {
-      stop_overdue(going, study.run_time_limit_s);
-      progress.tick(going.size());
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      continue;
-    }
-    const Child finished = *child;
-    going.erase(child);
-    Row row = collect(finished, status, usage, study.run_time_limit_s);
-    const std::string line = finished_line(finished.run, runs.size(), runs[finished.run], row);
-    table.add(finished.run, std::move(row));
-    ++done;
-    progress.finished(finished.run, line, going.size());
-  }
+  std::size_t going_count = 0;
+  PoolCalls calls;
+  calls.start = [&](std::size_t run) {
+    ++going_count;
+    return start_child(runs[run], run, study, threads);
+  };
+  calls.between = [&](std::vector<Child>& going) {
+    stop_overdue(going, study.run_time_limit_s);
+    progress.tick(going.size());
+    return true;
+  };
+  calls.ended = [&](const Child& child, int status, const rusage& usage,
+                    const std::string& output) {
+    --going_count;
+    Row row = collect(child, status, usage, output, study.run_time_limit_s);
+    const std::string line = finished_line(child.task, runs.size(), runs[child.task], row);
+    table.add(child.task, std::move(row));
+    progress.finished(child.task, line, going_count);
+  };
+  run_pool(start_order(runs), jobs, calls);
 }
 
 }  // namespace

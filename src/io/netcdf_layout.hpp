@@ -90,12 +90,9 @@ class Definer {
     detail::NetcdfIds ids;
     int time_dim = -1;
     ok(nc_def_dim(ncid_, "time", NC_UNLIMITED, &time_dim), "define dimension time");
-    ok(nc_def_dim(ncid_, "y", grid_.ny, &ids.y_dim), "define dimension y");
-    ok(nc_def_dim(ncid_, "x", grid_.nx, &ids.x_dim), "define dimension x");
-
-    const int x_var = coordinate("x", ids.x_dim, "X");
-    const int y_var = coordinate("y", ids.y_dim, "Y");
-    if (georeferenced()) define_crs(describe_crs(grid_.crs_wkt, file_));
+    const GridIds grid = define_grid();
+    ids.y_dim = grid.y_dim;
+    ids.x_dim = grid.x_dim;
 
     ids.time = time_variable("time", time_dim, "simulated time of the maps and particles",
                              meta.time_units);
@@ -116,10 +113,29 @@ class Definer {
     define_series(layout.gauges, meta.time_units, ids);
     ok(nc_enddef(ncid_), "leave define mode");
 
-    write_axis(x_var, grid_.x0, grid_.dx, grid_.nx, "write variable x");
-    write_axis(y_var, grid_.y0, grid_.dy, grid_.ny, "write variable y");
+    write_grid(grid);
     write_gauges(layout.gauges);
     return ids;
+  }
+
+  // The grid alone: dimensions y and x, their coordinate variables and the CRS. A file of
+  // maps without time (the products of an ensemble) defines this, its maps, and then writes
+  // the axes with write_grid() once out of define mode.
+  struct GridIds {
+    int y_dim = -1, x_dim = -1, x_var = -1, y_var = -1;
+  };
+  GridIds define_grid() const {
+    GridIds ids;
+    ok(nc_def_dim(ncid_, "y", grid_.ny, &ids.y_dim), "define dimension y");
+    ok(nc_def_dim(ncid_, "x", grid_.nx, &ids.x_dim), "define dimension x");
+    ids.x_var = coordinate("x", ids.x_dim, "X");
+    ids.y_var = coordinate("y", ids.y_dim, "Y");
+    if (georeferenced()) define_crs(describe_crs(grid_.crs_wkt, file_));
+    return ids;
+  }
+  void write_grid(const GridIds& ids) const {
+    write_axis(ids.x_var, grid_.x0, grid_.dx, grid_.nx, "write variable x");
+    write_axis(ids.y_var, grid_.y0, grid_.dy, grid_.ny, "write variable y");
   }
 
   // A variable written once is added when it is written (netCDF-4 lets variables be

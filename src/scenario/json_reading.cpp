@@ -373,6 +373,19 @@ json parse_json(const std::string& text) {
   }
 }
 
+std::filesystem::path path_value(const Object& o, std::string_view key, const std::string& what,
+                                 const std::filesystem::path& base_dir, const std::string& folder) {
+  const std::string expected = "a path to " + what + " (relative to " + folder + ")";
+  const json* v = o.find(key);
+  if (v == nullptr) throw ScenarioError(o.path(key), kMissing, expected);
+  if (!v->is_string() || v->get_ref<const std::string&>().empty()) {
+    throw ScenarioError(o.path(key), describe(*v), expected);
+  }
+  std::filesystem::path p(v->get<std::string>());
+  if (p.is_relative()) p = base_dir / p;
+  return std::filesystem::absolute(p).lexically_normal();
+}
+
 std::string read_text_file(const std::filesystem::path& file, const std::string& expected) {
   const std::string cannot = "cannot read file '" + file.string() + "': ";
   std::error_code ec;

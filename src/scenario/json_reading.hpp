@@ -119,6 +119,12 @@ std::string_view choice(const Object& o, std::string_view key, const Names& choi
 std::string_view word(const json& v, const std::string& path, const Names& choices);
 bool optional_bool(const Object& o, std::string_view key, bool fallback);
 
+// o[key], a non-empty string naming a file or folder, taken relative to `base_dir` when it is
+// relative; absolute and normalised. `folder` names base_dir in messages ("the study file's
+// folder"); `what` says what the path is for.
+std::filesystem::path path_value(const Object& o, std::string_view key, const std::string& what,
+                                 const std::filesystem::path& base_dir, const std::string& folder);
+
 // ---------------------------------------------------------------------------------------------
 // Documents
 

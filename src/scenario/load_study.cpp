@@ -14,23 +14,10 @@ using namespace json_reading;
 
 namespace {
 
-// A path the study names, relative to the study file's folder.
-std::filesystem::path resolve(const std::string& text, const std::filesystem::path& base_dir) {
-  std::filesystem::path p(text);
-  if (p.is_relative()) p = base_dir / p;
-  return std::filesystem::absolute(p).lexically_normal();
-}
-
-// o[key], a non-empty string naming a file.
+// o[key], a path the study names, relative to the study file's folder.
 std::filesystem::path file_path(const Object& o, std::string_view key, const std::string& what,
                                 const std::filesystem::path& base_dir) {
-  const std::string expected = "a path to " + what + " (relative to the study file's folder)";
-  const json* v = o.find(key);
-  if (v == nullptr) throw ScenarioError(o.path(key), kMissing, expected);
-  if (!v->is_string() || v->get_ref<const std::string&>().empty()) {
-    throw ScenarioError(o.path(key), describe(*v), expected);
-  }
-  return resolve(v->get<std::string>(), base_dir);
+  return path_value(o, key, what, base_dir, "the study file's folder");
 }
 
 study::RitterReference read_ritter(const json& v, const std::string& path) {

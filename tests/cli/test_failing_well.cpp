@@ -163,20 +163,7 @@ void require_same_end(const fs::path& a, const fs::path& b) {
 
 // Starts swe-mps with `args` (output to `log`), without waiting for it.
 pid_t start(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(cli.c_str()));
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  return pid;
+  return swemps::testing::start_program(cli, args, log);
 }
 
 std::string read_text(const fs::path& file) {

@@ -16,6 +16,7 @@
 
 #include "../support/broken_scenes.hpp"
 #include "swemps/maps/flood_statistics.hpp"
+#include "swemps/scenario/ensemble_file.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
@@ -1052,6 +1053,16 @@ TEST_CASE("every shipped scene read again as recorded is the same scene", "[scen
     }();
     if (json::parse(text).contains("sweep")) continue;  // a study file, not a scene
     INFO(entry.path().string());
+    if (json::parse(text).contains("vary")) {
+      // An ensemble file: every member's scene is a scene that reads.
+      const auto ensemble = swemps::scenario::load_ensemble(entry.path());
+      for (const auto& member : swemps::ensemble::members(ensemble)) {
+        const fs::path folder = ensemble.folder / "member";
+        CHECK_NOTHROW(swemps::scenario::parse(
+            swemps::scenario::member_scene(ensemble, member, folder), folder, "member"));
+      }
+      continue;
+    }
     const auto first = swemps::scenario::parse(text, entry.path().parent_path(), "scene");
     const auto again =
         swemps::scenario::parse(first.as_read_json, entry.path().parent_path(), "scene");

@@ -1,6 +1,7 @@
 #pragma once
 // Command-line options of the swe-mps executable.
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -12,7 +13,7 @@ namespace swemps::cli {
 enum class Verbosity { quiet, normal, verbose };
 
 struct Options {
-  // "run", "compare", "study", "check", "export", or "help" / "version"
+  // "run", "compare", "study", "ensemble", "check", "export", or "help" / "version"
   std::string command;
   std::filesystem::path scenario;  // the scene; study: the study file; export: the result
   // -o: run writes here instead of the scene's output path; compare takes it as the stem of
@@ -30,6 +31,17 @@ struct Options {
   // "cog")
   std::vector<std::string> maps;
   std::string format;
+  // ensemble: what to do (docs/ensembles.md). None of these: run every member on this machine
+  // and collect.
+  std::optional<std::size_t> member;  // --member N: run member N alone
+  bool plan = false;                  // --plan: write the members' scenes, run nothing
+  bool collect = false;               // --collect: the products of the members that ran
+  bool submit = false;                // --submit: run the members as a Slurm job array
+  bool failed_only = false;           // --failed-only: only members without a finished run
+  bool partial = false;               // --partial: products from the finished members alone
+  // --submit: sbatch settings over the ensemble file's
+  std::string partition, account, time_limit;
+  std::optional<int> max_running;
 };
 
 class UsageError : public std::runtime_error {

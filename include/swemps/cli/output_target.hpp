@@ -6,6 +6,7 @@
 // is renamed into place.
 
 #include <filesystem>
+#include <string>
 
 namespace swemps::cli {
 
@@ -19,5 +20,9 @@ void check_output_target(const std::filesystem::path& file);
 // The path given with -o, absolute and normalised; an empty one stays empty, for
 // check_output_target to report (std::filesystem::absolute throws on it).
 std::filesystem::path output_option(const std::filesystem::path& given);
+
+// Writes `text` to `file` under <file>.partial first and renames it into place, so that a
+// reader never sees half a file. Throws OutputError naming the file.
+void write_whole_file(const std::filesystem::path& file, const std::string& text);
 
 }  // namespace swemps::cli
