@@ -105,8 +105,9 @@ void write_members_table(const ensemble::Ensemble& e, const std::vector<ensemble
                          const std::vector<CollectedMember>& collected) {
   std::vector<std::string> columns{"member", "folder"};
   for (const auto& k : e.knobs) columns.push_back(text_field(k.name));
-  for (const char* c : {"status", "exit_status", "wall_s", "peak_memory_mib", "max_depth_m",
-                        "flooded_area_m2", "final_volume_error", "host", "job", "message"}) {
+  for (const char* c :
+       {"status", "exit_status", "wall_s", "peak_memory_mib", "max_depth_m", "flooded_area_m2",
+        "final_volume_error", "host", "job", "resumed", "message"}) {
     columns.emplace_back(c);
   }
   std::string text = csv_line(columns);
@@ -124,6 +125,7 @@ void write_members_table(const ensemble::Ensemble& e, const std::vector<ensemble
     fields.push_back(number_text(c.result ? c.result->final_volume_error : kNaN));
     fields.push_back(text_field(c.record ? c.record->host : ""));
     fields.push_back(text_field(c.record ? c.record->job : ""));
+    fields.push_back(c.record && c.record->resumed ? "yes" : "");
     fields.push_back(text_field(c.message));
     text += csv_line(fields);
   }

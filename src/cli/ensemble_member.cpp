@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <thread>
 #include <vector>
 
@@ -40,9 +41,9 @@ std::string one_line(std::string text) {
 std::string encode(const MemberRecord& r) {
   return fmt::format(
       "status {}\nexit_status {}\nwall_s {:.17g}\npeak_memory_mib {:.17g}\nhost {}\njob {}\n"
-      "message {}\n",
+      "resumed {}\nmessage {}\n",
       r.status, r.exit_status, r.wall_s, r.peak_memory_mib, one_line(r.host), one_line(r.job),
-      one_line(r.message));
+      r.resumed ? 1 : 0, one_line(r.message));
 }
 
 // The last line of the run's output that says something: the reason a failed run gives.
@@ -91,7 +92,7 @@ volatile std::sig_atomic_t g_signalled = 0;
 void note_signal(int) { g_signalled = 1; }
 
 [[noreturn]] void exec_run(const std::filesystem::path& scene, const std::filesystem::path& out,
-                           int threads, pid_t parent) {
+                           const std::vector<std::string>& options, pid_t parent) {
   // A member whose wrapper is gone (killed) stops too, as a run stops on SIGTERM.
   ::prctl(PR_SET_PDEATHSIG, SIGTERM);
   if (::getppid() != parent) ::_exit(exit_signal + SIGTERM);
@@ -102,9 +103,10 @@ void note_signal(int) { g_signalled = 1; }
   }
   ::signal(SIGINT, SIG_DFL);
   ::signal(SIGTERM, SIG_DFL);
-  const std::string exe = own_executable().string(), threads_text = std::to_string(threads);
-  std::vector<const char*> argv{exe.c_str(),          "run",  scene.c_str(), "--threads",
-                                threads_text.c_str(), nullptr};
+  const std::string exe = own_executable().string();
+  std::vector<const char*> argv{exe.c_str(), "run", scene.c_str()};
+  for (const auto& option : options) argv.push_back(option.c_str());
+  argv.push_back(nullptr);
   ::execv(exe.c_str(), const_cast<char* const*>(argv.data()));
   std::fprintf(stderr, "swe-mps: cannot start the member's run: %s\n", std::strerror(errno));
   ::_exit(exit_internal);
@@ -139,6 +141,8 @@ std::optional<MemberRecord> read_member_record(const std::filesystem::path& fold
       r.host = value;
     } else if (key == "job") {
       r.job = value;
+    } else if (key == "resumed") {
+      r.resumed = value == "1";
     } else if (key == "message") {
       r.message = value;
     }
@@ -171,15 +175,41 @@ std::filesystem::path write_member_scene(const ensemble::Ensemble& ensemble,
   return scene;
 }
 
+// The text of a file; empty when there is none.
+std::string file_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 MemberRecord run_member(const ensemble::Ensemble& ensemble, const ensemble::Member& member,
                         int threads) {
+  const std::filesystem::path folder = member_folder(ensemble, member.index);
+  const std::string scene_before = file_text(folder / "scenario.json");
   const std::filesystem::path scene = write_member_scene(ensemble, member);
-  const std::filesystem::path folder = scene.parent_path();
+  const std::filesystem::path result = folder / scenario::kMemberResult;
+  std::filesystem::path checkpoint = result, partial = result;
+  checkpoint.replace_extension(".checkpoint");  // where a run of this scene writes them
+  partial += ".partial";
+  const auto earlier = read_member_record(folder);
+  const bool resume = (!earlier || earlier->status != "ok") && file_text(scene) == scene_before &&
+                      std::filesystem::exists(checkpoint) && std::filesystem::exists(partial);
   // What an earlier run of this member left would otherwise pass for this run's.
-  for (const char* stale : {kRecord, scenario::kMemberResult}) {
+  for (const auto& stale : {folder / kRecord, result}) {
     std::error_code ignored;
-    std::filesystem::remove(folder / stale, ignored);
+    std::filesystem::remove(stale, ignored);
   }
+  if (!resume) {
+    for (const auto& stale : {checkpoint, partial}) {
+      std::error_code ignored;
+      std::filesystem::remove(stale, ignored);
+    }
+  }
+  std::vector<std::string> options{"--threads", std::to_string(threads)};
+  if (ensemble.checkpoint_every) {
+    options.insert(options.end(),
+                   {"--checkpoint-every", std::to_string(*ensemble.checkpoint_every)});
+  }
+  if (resume) options.insert(options.end(), {"--restart", checkpoint.string()});
 
   struct sigaction action {};
   action.sa_handler = note_signal;  // no SA_RESTART: the wait below sees EINTR and goes on
@@ -190,6 +220,7 @@ MemberRecord run_member(const ensemble::Ensemble& ensemble, const ensemble::Memb
   ::sigaction(SIGTERM, &action, &old_term);
 
   MemberRecord r;
+  r.resumed = resume;
   r.host = host_name();
   r.job = scheduler_job();
   std::fflush(stdout);
@@ -200,7 +231,7 @@ MemberRecord run_member(const ensemble::Ensemble& ensemble, const ensemble::Memb
   if (pid < 0) {
     r.message = std::string("cannot start the member's run: fork: ") + std::strerror(errno);
   }
-  if (pid == 0) exec_run(scene, folder / kRunOutput, threads, parent);
+  if (pid == 0) exec_run(scene, folder / kRunOutput, options, parent);
 
   if (pid > 0) {
     int status = 0;

@@ -72,8 +72,9 @@ Options:
       --failed-only   ensemble: run (or submit) only the members without a finished run
       --partial       ensemble: make the products from the members that finished even when
                       others did not (the files say which were combined)
-      --partition P, --account A, --time T, --max-running N
+      --partition P, --account A, --time T, --memory M, --max-running N
                       ensemble --submit: sbatch settings over the ensemble file's "slurm"
+                      (--time and --memory per member, as sbatch takes them: 2:00:00, 4G)
   -q, --quiet         warnings and errors only, no progress
   -v, --verbose       debug messages
   -h, --help          this text
@@ -166,14 +167,15 @@ Options parse_options(const std::vector<std::string>& args) {
       options.failed_only = true;
     } else if (arg == "--partial") {
       options.partial = true;
-    } else if (arg == "--partition" || arg == "--account" || arg == "--time") {
+    } else if (arg == "--partition" || arg == "--account" || arg == "--time" || arg == "--memory") {
       const std::string& text = value(arg);
       if (text.empty() || text.find_first_of(" \t\n\r'\"\\$`") != std::string::npos) {
         throw UsageError(arg + " expects a value without blanks or quotes, found '" + text + "'");
       }
       (arg == "--partition" ? options.partition
        : arg == "--account" ? options.account
-                            : options.time_limit) = text;
+       : arg == "--time"    ? options.time_limit
+                            : options.memory) = text;
     } else if (arg == "--max-running") {
       options.max_running = parse_count(arg, value(arg), 100'000);
     } else if (arg == "-q" || arg == "--quiet") {
@@ -205,12 +207,13 @@ Options parse_options(const std::vector<std::string>& args) {
   const int modes = (options.member ? 1 : 0) + (options.plan ? 1 : 0) + (options.collect ? 1 : 0) +
                     (options.submit ? 1 : 0);
   const bool slurm_settings = !options.partition.empty() || !options.account.empty() ||
-                              !options.time_limit.empty() || options.max_running;
+                              !options.time_limit.empty() || !options.memory.empty() ||
+                              options.max_running;
   if (options.command != "ensemble" &&
       (modes > 0 || options.failed_only || options.partial || slurm_settings)) {
     throw UsageError(
         "--member, --plan, --collect, --submit, --failed-only, --partial, --partition, "
-        "--account, --time and --max-running apply to 'ensemble' only");
+        "--account, --time, --memory and --max-running apply to 'ensemble' only");
   }
   if (modes > 1) {
     throw UsageError("--member, --plan, --collect and --submit are modes: give one at most");
@@ -222,7 +225,8 @@ Options parse_options(const std::vector<std::string>& args) {
     throw UsageError("--partial applies to collecting the products (no mode, or --collect)");
   }
   if (slurm_settings && !options.submit) {
-    throw UsageError("--partition, --account, --time and --max-running apply to --submit");
+    throw UsageError(
+        "--partition, --account, --time, --memory and --max-running apply to --submit");
   }
   if (options.scenario.empty()) {
     throw UsageError("'" + options.command + "' expects a " +

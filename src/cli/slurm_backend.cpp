@@ -26,6 +26,7 @@ ensemble::SlurmSettings settings(const SlurmRequest& r) {
   if (!r.options.partition.empty()) s.partition = r.options.partition;
   if (!r.options.account.empty()) s.account = r.options.account;
   if (!r.options.time_limit.empty()) s.time_limit = r.options.time_limit;
+  if (!r.options.memory.empty()) s.memory = r.options.memory;
   if (r.options.max_running) s.max_running = r.options.max_running;
   return s;
 }

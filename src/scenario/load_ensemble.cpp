@@ -215,10 +215,11 @@ ensemble::SlurmSettings read_slurm(const Object& root) {
 }
 
 ensemble::Ensemble read_ensemble(const json& root, const std::filesystem::path& file) {
-  const Object o(root, "",
-                 {"description", "scene", "vary", "samples", "seed", "sampling", "thresholds",
-                  "threads_per_member", "jobs", "run_time_limit", "folder", "slurm"},
-                 "a JSON object describing the ensemble");
+  const Object o(
+      root, "",
+      {"description", "scene", "vary", "samples", "seed", "sampling", "thresholds",
+       "threads_per_member", "jobs", "run_time_limit", "checkpoint_every", "folder", "slurm"},
+      "a JSON object describing the ensemble");
   optional_string(o, "description", "a string");  // free text, checked only for its type
   const std::filesystem::path base_dir = file.parent_path();
   ensemble::Ensemble e;
@@ -270,6 +271,10 @@ ensemble::Ensemble read_ensemble(const json& root, const std::filesystem::path& 
   if (o.find("run_time_limit") != nullptr) {
     e.run_time_limit_s = bounded(o, "run_time_limit", 0.0, true, 1e7,
                                  "the wall-clock seconds one member may take", 0.0);
+  }
+  if (const auto every =
+          whole(o, "checkpoint_every", 1, 1000000, "output times between a member's checkpoints")) {
+    e.checkpoint_every = static_cast<int>(*every);
   }
   std::filesystem::path default_folder = file.parent_path() / file.stem();
   e.folder = o.find("folder") == nullptr

@@ -297,11 +297,29 @@ TEST_CASE("SIGINT stops the members well; --failed-only runs them again", "[cli]
     // The run wrote what it had, as any run stopped by a signal does.
     CHECK(fs::exists(folder / rows[i][1] / "result.nc.partial"));
   }
+  // Run again, each member goes on from the checkpoint its stopped run left, to the same
+  // products as members run straight through.
   const auto again =
       swemps::testing::run_command(cli + " ensemble " + file.string() + " --failed-only -q");
   INFO(again.output);
-  CHECK(again.status == 0);
-  CHECK(csv_rows(folder / "members.csv")[1][3] == "ok");
+  REQUIRE(again.status == 0);
+  const auto resumed = csv_rows(folder / "members.csv");
+  REQUIRE(resumed[0][12] == "resumed");
+  for (std::size_t i = 1; i < resumed.size(); ++i) {
+    CHECK(resumed[i][3] == "ok");
+    CHECK(resumed[i][12] == "yes");
+    CHECK_THAT(read(folder / resumed[i][1] / "run.out"), Contains("going on from checkpoint"));
+  }
+  const fs::path straight = dir.path() / "straight";
+  REQUIRE(swemps::testing::run_command(cli + " ensemble " + file.string() + " -q -o " +
+                                       straight.string())
+              .status == 0);
+  const auto made = products(straight);
+  CHECK(made.size() == 1 + 4 * 2 + 2);  // the default four thresholds
+  for (const fs::path& f : made) {
+    INFO(f.filename());
+    CHECK(read(f) == read(folder / f.filename()));
+  }
 }
 
 TEST_CASE("a Slurm array names the members in ranges", "[cli][ensemble]") {

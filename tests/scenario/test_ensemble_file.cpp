@@ -70,6 +70,9 @@ TEST_CASE("an ensemble file is read with its defaults", "[ensemble][scenario]") 
   CHECK(e.threads_per_member == 1);
   CHECK_FALSE(e.jobs);
   CHECK_FALSE(e.run_time_limit_s);
+  CHECK_FALSE(e.checkpoint_every);
+  CHECK(*f.parse(R"("vary": [{"pointer": "/end_time", "values": [1]}], "checkpoint_every": 3)")
+             .checkpoint_every == 3);
   CHECK(swemps::ensemble::member_count(e) == 12);
 }
 
@@ -114,6 +117,8 @@ TEST_CASE("mistakes in an ensemble file are refused at their JSON path", "[ensem
        "/slurm/options/0", "starting with '-'"},
       {"fractional threads", knob + R"(, "threads_per_member": 1.5)", "/threads_per_member",
        "whole number"},
+      {"checkpoints never", knob + R"(, "checkpoint_every": 0)", "/checkpoint_every",
+       "from 1 to 1000000"},
   };
   for (const Refusal& c : cases) {
     INFO(c.label << ": " << c.rest);

@@ -1,8 +1,9 @@
 // The ensemble on a real Slurm cluster (CTest label slurm; tools/slurm-one-node starts a
 // one-node cluster on this machine first, and that test fails if its daemons cannot start):
 // six members submitted as a job array with a collection job after it, one member cancelled
-// while it runs, the collection naming it, the member resubmitted alone, and products that
-// match a local run of the same ensemble byte for byte.
+// while it runs, the collection naming it, the member resubmitted alone and going on from the
+// checkpoint its cancelled run left, and products that match a local run of the same ensemble
+// byte for byte.
 
 #include <catch2/catch.hpp>
 #include <chrono>
@@ -108,8 +109,8 @@ TEST_CASE("an ensemble on Slurm: a member cancelled, resubmitted alone, products
   INFO(here.output);
   REQUIRE(here.status == 0);
 
-  // Submit; cancel member 2 once its run has started.
-  const auto submitted = run_command(ensemble + " --submit -o " + cluster.string());
+  // Submit; cancel member 2 while its run is going.
+  const auto submitted = run_command(ensemble + " --submit --memory 1G -o " + cluster.string());
   INFO(submitted.output);
   REQUIRE(submitted.status == 0);
   const Submission first = last_submission(cluster);
@@ -118,7 +119,12 @@ TEST_CASE("an ensemble on Slurm: a member cancelled, resubmitted alone, products
   CHECK_THAT(script, Contains("#SBATCH --partition=debug"));
   CHECK_THAT(script, Contains("#SBATCH --time=10:00"));
   CHECK_THAT(script, Contains("#SBATCH --cpus-per-task=1"));
-  REQUIRE(wait_for([&] { return fs::exists(cluster / "member-2" / "run.out"); }, 120.0));
+  CHECK_THAT(script, Contains("#SBATCH --mem=1G"));  // from the command line
+  // Once its run has stepped a tenth of the way (its first progress line), so that it has a
+  // state to write when the cancel's SIGTERM comes.
+  REQUIRE(wait_for(
+      [&] { return read(cluster / "member-2" / "run.out").find("progress:") != std::string::npos; },
+      120.0));
   const auto cancel = run_command("scancel " + first.array + "_2");
   INFO(cancel.output);
   REQUIRE(cancel.status == 0);
@@ -144,6 +150,8 @@ TEST_CASE("an ensemble on Slurm: a member cancelled, resubmitted alone, products
   INFO(recollected);
   CHECK_THAT(recollected, Contains("from 6 of 6 members"));
   CHECK_THAT(read(cluster / "members.csv"), Contains(second.array + "_2"));
+  // scancel's SIGTERM stopped the run well, with a checkpoint: the member went on from it.
+  CHECK_THAT(read(cluster / "member-2" / "run.out"), Contains("going on from checkpoint"));
 
   const auto made_here = products(local);
   REQUIRE(made_here.size() == 1 + 2 * 2 + 2);

@@ -23,9 +23,10 @@ struct MemberRecord {
   int exit_status = 1;  // the run's, as a shell reports it (128 + n for signal n)
   double wall_s = std::numeric_limits<double>::quiet_NaN();
   double peak_memory_mib = std::numeric_limits<double>::quiet_NaN();
-  std::string host;     // where it ran
-  std::string job;      // the scheduler's job, "12345_3" for a Slurm array task; empty locally
-  std::string message;  // why it did not finish: the run's last message; empty when ok
+  std::string host;      // where it ran
+  std::string job;       // the scheduler's job, "12345_3" for a Slurm array task; empty locally
+  std::string message;   // why it did not finish: the run's last message; empty when ok
+  bool resumed = false;  // the run went on from the checkpoint an earlier run left
 };
 
 std::filesystem::path member_folder(const ensemble::Ensemble& ensemble, std::size_t index);
@@ -42,7 +43,10 @@ std::filesystem::path write_member_scene(const ensemble::Ensemble& ensemble,
 // Runs the member: writes its scene, clears what an earlier run left (record, result), runs
 // `swe-mps run` on it with `threads` OpenMP threads in a child process (stopped after the
 // ensemble's run_time_limit), and writes and returns its record. SIGINT and SIGTERM reach the
-// run, which stops as a run does; this process waits for it and records how it ended.
+// run, which stops as a run does, leaving a checkpoint; this process waits for it and records
+// how it ended. A member whose earlier run did not finish but left a checkpoint and its
+// partial result, for the same scene, goes on from there (`swe-mps run --restart`), to the
+// same result as a run straight through; anything else an unfinished run left is removed.
 MemberRecord run_member(const ensemble::Ensemble& ensemble, const ensemble::Member& member,
                         int threads);
 

@@ -40,7 +40,7 @@ struct Options {
   bool failed_only = false;           // --failed-only: only members without a finished run
   bool partial = false;               // --partial: products from the finished members alone
   // --submit: sbatch settings over the ensemble file's
-  std::string partition, account, time_limit;
+  std::string partition, account, time_limit, memory;
   std::optional<int> max_running;
 };
 

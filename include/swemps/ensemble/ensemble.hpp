@@ -70,6 +70,10 @@ struct Ensemble {
   std::optional<int> jobs;     // local backend: members at once; absent: one per core
   // A member still running after this many seconds is stopped and recorded as "timeout".
   std::optional<double> run_time_limit_s;
+  // Each member's run also writes a checkpoint every this many output times, so that a member
+  // killed outright (a node lost, SIGKILL) goes on from there when run again. Absent: only
+  // when a run is stopped by a signal (a scheduler's time limit, scancel).
+  std::optional<int> checkpoint_every;
   // Where the members' folders and the products go (absolute).
   std::filesystem::path folder;
   SlurmSettings slurm;
