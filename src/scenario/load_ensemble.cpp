@@ -20,7 +20,7 @@ std::filesystem::path path_of(const Object& o, std::string_view key, const std::
   return path_value(o, key, what, base_dir, "the ensemble file's folder");
 }
 
-// A whole number in [low, high] under `key`, or `fallback` when absent.
+// A whole number in [low, high] under `key`; nullopt when the key is absent.
 std::optional<long long> whole(const Object& o, std::string_view key, long long low, long long high,
                                const std::string& meaning) {
   const json* v = o.find(key);
