@@ -221,8 +221,8 @@ TEST_CASE("members run one by one and collected make the same products, byte for
 
 TEST_CASE("a member past the time limit is stopped and recorded; the ensemble says so",
           "[cli][ensemble]") {
-  // Twenty simulated seconds take far longer than the limit of a fifth of a second.
-  const Fixture f(20.0, R"("run_time_limit": 0.2)");
+  // A minute simulated (600 maps) takes a second or more: five times the limit of 0.2 s.
+  const Fixture f(60.0, R"("run_time_limit": 0.2)");
   const auto r = f.ensemble("-q");
   CHECK(r.status == 5);
   CHECK_THAT(r.output, Contains("6 of 6 members did not finish"));
