@@ -332,19 +332,20 @@ std::vector<std::size_t> members_to_run(const ensemble::Ensemble& e, std::size_t
 void ensemble(const Options& options, const std::string& /*command_line*/) {
   ensemble::Ensemble e = scenario::load_ensemble(options.scenario);
   if (options.output) e.folder = output_option(*options.output);
-  const std::vector<ensemble::Member> members = ensemble::members(e);
   const int threads = options.threads > 0 ? options.threads : e.threads_per_member;
   // The command that runs this ensemble again, for messages.
   const std::string again = "swe-mps ensemble " + options.scenario.string() +
                             (options.output ? " -o " + options.output->string() : "");
 
+  const std::size_t count = ensemble::member_count(e);
   if (options.member) {
-    if (*options.member >= members.size()) {
+    if (*options.member >= count) {
       throw UsageError(fmt::format("--member {}: the ensemble has {} members, 0 to {}",
-                                   *options.member, members.size(), members.size() - 1));
+                                   *options.member, count, count - 1));
     }
-    const ensemble::Member& m = members[*options.member];
-    spdlog::info("member {} of {} ({}) in {}", m.index, members.size(), describe(e, m),
+    // A scheduler's task runs one member: the others are not made.
+    const ensemble::Member m = ensemble::member(e, *options.member);
+    spdlog::info("member {} of {} ({}) in {}", m.index, count, describe(e, m),
                  member_folder(e, m.index).string());
     const MemberRecord r = run_member(e, m, threads);
     if (r.status != "ok") {
@@ -354,6 +355,7 @@ void ensemble(const Options& options, const std::string& /*command_line*/) {
     spdlog::info("member {}: ok, {:.3g} s", m.index, r.wall_s);
     return;
   }
+  const std::vector<ensemble::Member> members = ensemble::members(e);
 
   if (options.collect) {
     spdlog::info("ensemble '{}': collecting {} members from {}", options.scenario.string(),

@@ -94,32 +94,53 @@ std::vector<std::vector<double>> unit_draws(std::size_t samples, std::size_t kno
   return draws;
 }
 
-std::vector<Member> members(const Ensemble& ensemble) {
-  std::vector<const Knob*> listed, sampled;
-  for (const Knob& k : ensemble.knobs) (k.sampled() ? sampled : listed).push_back(&k);
-  const auto draws = unit_draws(ensemble.samples, sampled.size(), ensemble.seed, ensemble.sampling);
+namespace {
 
+// Member `index`, from the draws of every sample (unit_draws of the sampled knobs).
+Member make_member(const Ensemble& ensemble, std::size_t index,
+                   const std::vector<std::vector<double>>& draws) {
+  Member m{index, std::vector<std::string>(ensemble.knobs.size())};
+  const std::size_t sample = index % ensemble.samples;
+  // The combination's digits, the last listed knob fastest; sampled knobs in their order.
+  std::size_t combination = index / ensemble.samples;
+  std::size_t sampled = draws.empty() ? 0 : draws.front().size();
+  for (std::size_t k = ensemble.knobs.size(); k-- > 0;) {
+    const Knob& knob = ensemble.knobs[k];
+    if (knob.sampled()) {
+      m.values[k] = shortest_text(knob_value(knob, draws[sample][--sampled]));
+      continue;
+    }
+    m.values[k] = knob.values[combination % knob.values.size()];
+    combination /= knob.values.size();
+  }
+  return m;
+}
+
+std::vector<std::vector<double>> draws_of(const Ensemble& ensemble) {
+  const auto sampled = static_cast<std::size_t>(std::count_if(
+      ensemble.knobs.begin(), ensemble.knobs.end(), [](const Knob& k) { return k.sampled(); }));
+  return unit_draws(ensemble.samples, sampled, ensemble.seed, ensemble.sampling);
+}
+
+}  // namespace
+
+std::vector<Member> members(const Ensemble& ensemble) {
+  const auto draws = draws_of(ensemble);
   const std::size_t count = member_count(ensemble);
   std::vector<Member> out;
   out.reserve(count);
   for (std::size_t index = 0; index < count; ++index) {
-    Member m{index, std::vector<std::string>(ensemble.knobs.size())};
-    const std::size_t sample = index % ensemble.samples;
-    // The combination's digits, the last listed knob fastest.
-    std::size_t combination = index / ensemble.samples;
-    for (std::size_t l = listed.size(); l-- > 0;) {
-      const std::size_t n = listed[l]->values.size();
-      const auto at = static_cast<std::size_t>(listed[l] - ensemble.knobs.data());
-      m.values[at] = listed[l]->values[combination % n];
-      combination /= n;
-    }
-    for (std::size_t s = 0; s < sampled.size(); ++s) {
-      const auto at = static_cast<std::size_t>(sampled[s] - ensemble.knobs.data());
-      m.values[at] = shortest_text(knob_value(*sampled[s], draws[sample][s]));
-    }
-    out.push_back(std::move(m));
+    out.push_back(make_member(ensemble, index, draws));
   }
   return out;
+}
+
+Member member(const Ensemble& ensemble, std::size_t index) {
+  if (index >= member_count(ensemble)) {
+    throw std::out_of_range("ensemble::member: " + std::to_string(index) + " of " +
+                            std::to_string(member_count(ensemble)) + " members");
+  }
+  return make_member(ensemble, index, draws_of(ensemble));
 }
 
 std::string member_folder_name(std::size_t index, std::size_t count) {

@@ -227,7 +227,8 @@ ensemble::Ensemble read_ensemble(const json& root, const std::filesystem::path& 
   e.base_scene = path_of(o, "scene", "the scenario file every member starts from", base_dir);
   json scene;
   try {
-    scene = parse_json(read_text_file(e.base_scene, "a readable scenario JSON file"));
+    e.base_scene_text = read_text_file(e.base_scene, "a readable scenario JSON file");
+    scene = parse_json(e.base_scene_text);
   } catch (const ScenarioError& error) {
     throw ScenarioError(o.path("scene"),
                         "a scene that cannot be read: " + std::string(error.what()),
@@ -346,7 +347,7 @@ std::string member_scene(const ensemble::Ensemble& ensemble, const ensemble::Mem
                          const std::filesystem::path& member_folder) {
   json scene;
   try {
-    scene = parse_json(read_text_file(ensemble.base_scene, "a readable scenario JSON file"));
+    scene = parse_json(ensemble.base_scene_text);
   } catch (const ScenarioError& e) {
     throw ScenarioError("/scene", "a scene that cannot be read: " + std::string(e.what()),
                         "a readable scenario JSON file", "ensemble");

@@ -184,3 +184,21 @@ TEST_CASE("members added one at a time give what all at once give, bit for bit",
   CHECK_THROWS_AS(one_by_one.add(std::vector<double>(2, 0.0)), std::invalid_argument);
   CHECK_THROWS_AS(ProductsAccumulator(3, {0.1}).finish(), std::invalid_argument);
 }
+
+TEST_CASE("one member alone is the member the whole list has", "[ensemble]") {
+  Ensemble e;
+  e.knobs = {sampled("/n", 0.01, 0.1), listed("/q", {"1", "2", "3"}), sampled("/h", 1.0, 2.0),
+             listed("/z", {"\"a\"", "\"b\""})};
+  e.samples = 4;
+  e.seed = 3;
+  const auto all = members(e);
+  REQUIRE(all.size() == 24);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Member m = member(e, i);
+    CHECK(m.index == i);
+    CHECK(m.values == all[i].values);
+  }
+  CHECK(all[5].values[1] == "1");  // combination 1: q slowest, z fastest
+  CHECK(all[5].values[3] == "\"b\"");
+  CHECK_THROWS_AS(member(e, 24), std::out_of_range);
+}

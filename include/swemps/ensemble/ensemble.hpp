@@ -59,6 +59,7 @@ struct SlurmSettings {
 struct Ensemble {
   std::filesystem::path file;        // the ensemble file (absolute)
   std::filesystem::path base_scene;  // the scenario every member starts from (absolute)
+  std::string base_scene_text;       // its text, read once, so every member starts from it
   std::vector<Knob> knobs;           // in the file's order
   // Draws of the sampled knobs; 1 when no knob is sampled.
   std::size_t samples = 1;
@@ -94,6 +95,10 @@ std::size_t member_count(const Ensemble& ensemble);
 // The draws depend only on the seed, the sampling, the knobs' ranges and their order: the
 // same file gives the same members on any machine and with any standard library.
 std::vector<Member> members(const Ensemble& ensemble);
+
+// One member, as members() has it, without making the others (a scheduler's task runs one).
+// Throws std::out_of_range for an index past the last member.
+Member member(const Ensemble& ensemble, std::size_t index);
 
 // The sampled knobs' draws as fractions in [0, 1), draws[sample][sampled knob], before the
 // ranges are applied: what members() maps through each knob's distribution.
