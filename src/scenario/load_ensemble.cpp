@@ -39,6 +39,16 @@ std::optional<long long> whole(const Object& o, std::string_view key, long long 
                                  : static_cast<long long>(x);
 }
 
+// Whether the scene holds what `p` names. The library's own test throws, rather than answering
+// no, for a part under an array that is empty ("/inflow/") or too large for an index.
+bool scene_holds(const json& scene, const json::json_pointer& p) {
+  try {
+    return scene.contains(p);
+  } catch (const json::exception&) {
+    return false;
+  }
+}
+
 // The value a pointer names goes into the base scene: an array's element must be there to be
 // replaced; an object's key may be new, and so may objects above it ("/friction/manning_n" in
 // a scene without friction). A misspelt key is still caught: each member's scene is read as
@@ -62,7 +72,7 @@ void check_pointer(const json& scene, const std::string& pointer, const std::str
   // The deepest part of the pointer that is in the scene, and what holds the first part
   // that is not.
   json::json_pointer there = p;
-  while (!there.empty() && !scene.contains(there)) there = there.parent_pointer();
+  while (!there.empty() && !scene_holds(scene, there)) there = there.parent_pointer();
   if (there == p) return;
   const json& holder = scene.at(there);
   if (holder.is_object()) return;
