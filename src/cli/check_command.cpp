@@ -189,6 +189,13 @@ void rasters_section(const scenario::Scenario& scene, const scenario::Terrain& t
   if (const auto* bed = std::get_if<scenario::RasterBedSpec>(&scene.bed);
       bed && terrain.bed_raster) {
     raster_rows("bed", bed->raster.path, *terrain.bed_raster, terrain.domain);
+    if (terrain.bed_refinement > 1) {
+      row("  refinement",
+          fmt::format("each warped cell of {} x {} m split {} x {} before "
+                      "interpolating",
+                      num(terrain.bed_cells.cell_width), num(terrain.bed_cells.cell_height),
+                      terrain.bed_refinement, terrain.bed_refinement));
+    }
     any = true;
   }
   if (scene.manning_n && terrain.roughness) {
@@ -312,8 +319,10 @@ void estimate_section(double steps, double dt_s, const Timing& timing, double st
       rate, count(steps).c_str(), num(dt_s).c_str(), count(start_particles).c_str(),
       count(end_particles).c_str());
   if (per_step_output_s > 0.0) {
-    std::printf("  of which %s for the flood statistics, gridded every step (%s a step)\n",
-                duration(output_s).c_str(), duration(per_step_output_s).c_str());
+    std::printf(
+        "  of which at most %s for the flood statistics, sampled at most every step "
+        "(%s a sample)\n",
+        duration(output_s).c_str(), duration(per_step_output_s).c_str());
   }
   if (timing.dry_time_s > 0.0) {
     std::printf("  The steps to t = %s s, before the first particle came in, were not timed.\n",
@@ -384,20 +393,22 @@ double particles_section(const scenario::Scenario& scene, swe::Simulation& sim) 
   return inflow_particles;
 }
 
-// What a run does every step besides the step: grid the state and add it to the flood
+// What a run does at most every step besides the step: grid the state and add it to the flood
 // statistics (maps and series are written at their times only, and left out). Timed on the
 // state the timed steps reached, the faster of two (the first pays for allocations); the
 // gridding, which visits each particle's cells, scaled to `mean_particles`.
-double statistics_step_s(const scenario::Scenario& scene, swe::Simulation& sim,
-                         const swe::RegularGrid& grid, double mean_particles) {
+double statistics_step_s(const scenario::Scenario& scene, const scenario::Terrain& terrain,
+                         swe::Simulation& sim, const swe::RegularGrid& grid,
+                         double mean_particles) {
   sim.refresh();
+  const auto cells = scenario::map_reader(scene, terrain, grid);
   maps::FloodStatistics statistics(
       grid.nx * grid.ny,
       {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use});
   double gridding_s = std::numeric_limits<double>::infinity(), update_s = gridding_s;
   for (int k = 0; k < 2; ++k) {
     auto started = Clock::now();
-    const auto f = swe::fields_on_grid(sim.particles(), sim.kernel(), grid);
+    const auto f = cells.fields(sim.particles(), sim.kernel());
     gridding_s = std::min(gridding_s, seconds_since(started));
     started = Clock::now();
     statistics.update(sim.time() + k, f.depth, f.u, f.v);
@@ -449,7 +460,7 @@ void check_swe(const scenario::Scenario& scene, const Options& options) {
   if (scene.splitting) caveat += ", and splitting may add particles beyond these";
   if (!scene.inflows.empty()) caveat += "; the particles inflows add are counted from their volume";
   estimate_section(steps_to_end(scene, dt_s), dt_s, timing, start, end,
-                   statistics_step_s(scene, sim, grid, 0.5 * (start + end)), caveat,
+                   statistics_step_s(scene, built.terrain, sim, grid, 0.5 * (start + end)), caveat,
                    !scene.inflows.empty());
 }
 

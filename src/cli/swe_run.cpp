@@ -48,11 +48,15 @@ class SweOutput {
             const swe::RegularGrid& grid, const RunContext& context,
             const std::optional<io::WriterPosition>& resume)
       : grid_(grid),
+        gravity_(scene.numerics.gravity_m_s2),
+        cells_(scenario::map_reader(scene, terrain, grid)),
         gauges_(scene.output.gauges),
         write_particles_(scene.output.write_particles),
         file_(scene, terrain, grid, context, scene.output.write_particles, "", "", resume) {
-    for (const auto& g : gauges_)
+    for (const auto& g : gauges_) {
       gauge_bed_m_.push_back(file_.bed_at(g.position_m[0], g.position_m[1]));
+      gauge_cells_.push_back(scenario::gauge_reader(scene, terrain, grid, g.position_m));
+    }
   }
 
   // At most once a state: a run that stops just after writing an output time's maps does not
@@ -69,10 +73,16 @@ class SweOutput {
     seconds_ += seconds_since(start);
   }
 
-  // The flood statistics take every step, so that a peak between series samples is kept; at
-  // most once a step.
-  void update_statistics(swe::Simulation& sim) {
+  // The flood statistics, so that a peak between series samples is kept: at most once a step,
+  // and once a wave could have crossed half a map cell since the last sample (the Courant
+  // number 0.5 of a grid model on those cells), or when `due_now` (an output time, so that the
+  // envelopes hold every map written). A cell's water cannot change faster than that, so the
+  // envelopes keep every peak the maps can show; the particles' steps are several times
+  // shorter (the fastest of a few thousand sets them), and sampling each would cost as much
+  // again as the run's own summations on the valley flood.
+  void update_statistics(swe::Simulation& sim, bool due_now = false) {
     if (counted_ && counted_step_ == sim.steps()) return;
+    if (counted_ && !due_now && sim.time() < next_statistics_s_ * (1.0 - 1e-12)) return;
     // The state's depths are the next step's (refresh() is cached): not the statistics' cost.
     sim.refresh();
     const auto start = Clock::now();
@@ -80,6 +90,8 @@ class SweOutput {
     file_.update_statistics(sim.time(), {f.depth, f.u, f.v});
     counted_ = true;
     counted_step_ = sim.steps();
+    ++statistics_samples_;
+    next_statistics_s_ = sim.time() + statistics_interval(sim.particles());
     statistics_seconds_ += seconds_since(start);
   }
 
@@ -90,12 +102,13 @@ class SweOutput {
     sim.refresh();
     std::vector<io::GaugeSample> at_gauges;
     for (std::size_t k = 0; k < gauges_.size(); ++k) {
-      const auto& g = gauges_[k];
-      const auto p =
-          swe::fields_at(sim.particles(), sim.kernel(), g.position_m[0], g.position_m[1]);
-      const bool wet = p.depth_m > file_.wet_depth_m();
-      at_gauges.push_back({p.depth_m, wet ? p.u_m_s : kNaN, wet ? p.v_m_s : kNaN,
-                           wet ? p.depth_m + gauge_bed_m_[k] : kNaN});
+      // The water surface around the gauge less the bed at its point (maps::gauge_reader).
+      const auto around = gauge_cells_[k].fields(sim.particles(), sim.kernel());
+      const double surface = around.surface.front();
+      const double depth = surface > gauge_bed_m_[k] ? surface - gauge_bed_m_[k] : 0.0;
+      const bool wet = depth > file_.wet_depth_m();
+      at_gauges.push_back({depth, wet ? around.u.front() : kNaN, wet ? around.v.front() : kNaN,
+                           wet ? surface : kNaN});
     }
     const auto& ledger = sim.ledger();
     const io::BalanceSample balance{sim.fluid_volume(), ledger.added_m3, ledger.removed_m3,
@@ -111,8 +124,14 @@ class SweOutput {
     file_.close_stopped(status, message);
   }
   void flush() { file_.flush(); }
-  void save_state(swe::StateWriter& out) const { file_.save_state(out); }
-  void restore_statistics(swe::StateReader& in) { file_.restore_statistics(in); }
+  void save_state(swe::StateWriter& out) const {
+    file_.save_state(out);
+    out.number(next_statistics_s_);
+  }
+  void restore_statistics(swe::StateReader& in) {
+    file_.restore_statistics(in);
+    next_statistics_s_ = in.number();
+  }
   // The state of a restored simulation was written by the run that stopped there.
   void restored(const swe::Simulation& sim) {
     mapped_ = true;
@@ -124,16 +143,31 @@ class SweOutput {
   // Time spent writing (maps, series) and gridding the state for the statistics.
   double seconds() const { return seconds_ + statistics_seconds_; }
   double statistics_seconds() const { return statistics_seconds_; }
+  std::size_t statistics_samples() const { return statistics_samples_; }
   const std::filesystem::path& path() const { return file_.path(); }
   const std::filesystem::path& partial_path() const { return file_.partial_path(); }
 
  private:
+  static constexpr double kMapCourant = 0.5;
+
+  // Until the next statistics sample: kMapCourant map cells at the fastest wave speed
+  // |u| + sqrt(g h) of any particle; 0 (the next step) without water.
+  double statistics_interval(const particles::SweParticles& p) const {
+    double fastest = 0.0;
+    for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+      const double c = std::hypot(p.u[i], p.v[i]) + std::sqrt(gravity_ * std::max(p.depth[i], 0.0));
+      fastest = std::max(fastest, c);
+    }
+    if (!(fastest > 0.0)) return 0.0;
+    return kMapCourant * std::min(grid_.dx, grid_.dy) / fastest;
+  }
+
   // The gridded fields of the current state, computed once per state (maps and sample share
   // them at an output time).
-  const swe::GridFields& fields(swe::Simulation& sim) {
+  const maps::CellFields& fields(swe::Simulation& sim) {
     sim.refresh();
     if (fields_step_ != sim.steps() || !has_fields_) {
-      fields_ = swe::fields_on_grid(sim.particles(), sim.kernel(), grid_);
+      fields_ = cells_.fields(sim.particles(), sim.kernel());
       fields_step_ = sim.steps();
       has_fields_ = true;
     }
@@ -141,15 +175,20 @@ class SweOutput {
   }
 
   swe::RegularGrid grid_;
+  double gravity_;
+  maps::CellAverages cells_;  // what a map cell reads of the particles
   std::vector<scenario::Gauge> gauges_;
-  std::vector<double> gauge_bed_m_;  // the bed elevation at each gauge
+  std::vector<double> gauge_bed_m_;              // the bed elevation at each gauge
+  std::vector<maps::CellAverages> gauge_cells_;  // the cell each gauge reads the water in
   bool write_particles_;
   MapOutput file_;
-  swe::GridFields fields_;
+  maps::CellFields fields_;
   std::size_t fields_step_ = 0, sampled_step_ = 0, mapped_step_ = 0, counted_step_ = 0;
   bool has_fields_ = false, sampled_ = false, mapped_ = false, counted_ = false;
   double mapped_time_s_ = 0.0;
   double seconds_ = 0.0, statistics_seconds_ = 0.0;
+  double next_statistics_s_ = 0.0;      // the statistics' next sample is due at this time
+  std::size_t statistics_samples_ = 0;  // this process's, for the log
 };
 
 // A raster bed with cells under 3 particle spacings can be rough inside one kernel support,
@@ -167,7 +206,8 @@ void warn_if_bed_finer_than_particles(const scenario::Scenario& scene,
   double spacing = 0.0;
   for (const auto& w : scene.water) spacing = std::max(spacing, w.spacing_m);
   for (const auto& in : scene.inflows) spacing = std::max(spacing, in.spacing_m);
-  const auto& g = terrain.bed_raster->geometry();
+  // The natural cells: a refined warp is smooth within them, rough only from one to the next.
+  const auto& g = terrain.bed_cells;
   const double cell = std::min(g.cell_width, g.cell_height);
   constexpr double kSmoothCells = 3.0;  // in particle spacings; see docs/robustness.md
   if (spacing <= 0.0 || cell >= kSmoothCells * spacing) return;
@@ -319,6 +359,12 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     log_starting_volumes(built.volumes);
   }
   warn_if_bed_finer_than_particles(scene, built.terrain);
+  if (built.terrain.bed_refinement > 1) {
+    const auto& cells = built.terrain.bed_cells;
+    const auto& fine = built.terrain.bed_raster->geometry();
+    spdlog::info("bed: warped cells of {:.4g} m sampled on {} x {} cells of {:.4g} m",
+                 cells.cell_width, fine.columns, fine.rows, fine.cell_width);
+  }
 
   const auto grid = scenario::output_grid(scene, built.terrain);
   std::optional<io::WriterPosition> resume_at;
@@ -414,6 +460,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
       // would, series sample included, so that the restarted run's file is the same.
       if (sim.reached(target)) {
         output.write_maps(sim);
+        output.update_statistics(sim, true);
         output.sample(sim);
         spdlog::debug("wrote output at t = {} s", sim.time());
         ++outputs;
@@ -464,9 +511,9 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   progress.finish();
   output.finish();
   spdlog::info(
-      "flood statistics sampled every step: {:.3f} s of the output time (gridding "
-      "and accumulating)",
-      output.statistics_seconds());
+      "flood statistics sampled {} times (a wave crossing half a map cell, and every output "
+      "time): {:.3f} s of the output time (gridding and accumulating)",
+      output.statistics_samples(), output.statistics_seconds());
   const double wall_s = seconds_since(start);
   log_summary(sim, "done", initial_particles, initial_particle_steps, wall_s, output.seconds(),
               output.path());

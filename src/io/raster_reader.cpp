@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -143,10 +144,18 @@ terrain::GriddedField read_band(GDALDataset& dataset, int band_index, std::strin
   return terrain::GriddedField(geometry, std::move(values), std::move(crs_wkt), request.purpose);
 }
 
-// Warps one band to `target` on GDAL's suggested grid (square cells, bilinear), into memory.
-// Cells whose centre falls outside the source's footprint, or on its nodata, become NaN.
+// The extent and size of a warp's output grid; none: GDAL's suggested grid.
+struct WarpGrid {
+  double x_min = 0.0, y_min = 0.0, x_max = 0.0, y_max = 0.0;
+  std::size_t columns = 0, rows = 0;
+};
+
+// Warps one band to `target` (square cells, bilinear), into memory: on GDAL's suggested grid,
+// or on `grid` when given. Cells whose centre falls outside the source's footprint, or on its
+// nodata, become NaN.
 GDALDatasetUniquePtr warp_band(GDALDataset& source, int band_index,
-                               const OGRSpatialReference& target, const RasterRequest& request) {
+                               const OGRSpatialReference& target, const RasterRequest& request,
+                               const std::optional<WarpGrid>& grid = std::nullopt) {
   const RasterError fail(request);
   const std::string target_description = request.crs_setting + " = \"" + request.target_crs + "\"";
   // The warper of this GDAL generation takes no band choice, so the band goes alone into a
@@ -167,6 +176,17 @@ GDALDatasetUniquePtr warp_band(GDALDataset& source, int band_index,
   ArgumentList arguments;
   arguments.add("-of").add("MEM").add("-t_srs").add(to_wkt2(target));
   arguments.add("-r").add("bilinear").add("-ot").add("Float64");
+  if (grid) {
+    const auto text = [](double v) {
+      std::ostringstream s;
+      s.precision(17);
+      s << v;
+      return s.str();
+    };
+    arguments.add("-te").add(text(grid->x_min)).add(text(grid->y_min));
+    arguments.add(text(grid->x_max)).add(text(grid->y_max));
+    arguments.add("-ts").add(std::to_string(grid->columns)).add(std::to_string(grid->rows));
+  }
   // GDAL's default approximation of the transform may misplace values by 1/8 of a source
   // cell; 1/100 keeps that well below the interpolation's own error at little cost.
   arguments.add("-et").add("0.01");
@@ -244,6 +264,10 @@ std::string utm_crs_for(double longitude_deg, double latitude_deg) {
 }
 
 terrain::GriddedField read_raster(const RasterRequest& request) {
+  return read_raster_surface(request, 1).field;
+}
+
+RasterSurface read_raster_surface(const RasterRequest& request, std::size_t refinement) {
   register_gdal_drivers();
   const QuietGdalErrors quiet;
   const RasterError fail(request);
@@ -305,7 +329,9 @@ terrain::GriddedField read_raster(const RasterRequest& request) {
            request.target_crs + "\"; give the file a CRS, or remove " + request.crs_setting +
            " to take its coordinates as metres");
     }
-    return read_band(*dataset, request.band, "", request);
+    auto field = read_band(*dataset, request.band, "", request);
+    auto cells = field.geometry();
+    return {std::move(field), cells, 1};
   }
   if (source_crs->IsGeographic()) {
     if (!has_target) {
@@ -320,13 +346,41 @@ terrain::GriddedField read_raster(const RasterRequest& request) {
            "; the solver works in metres, so reproject it to a CRS in metres first");
     }
     if (!has_target || source_crs->IsSame(&target)) {
-      return read_band(*dataset, request.band, to_wkt2(*source_crs), request);
+      auto field = read_band(*dataset, request.band, to_wkt2(*source_crs), request);
+      auto cells = field.geometry();
+      return {std::move(field), cells, 1};
     }
   } else {
     fail("has a CRS that is neither projected nor geographic");
   }
   auto warped = warp_band(*dataset, request.band, target, request);
-  return read_band(*warped, 1, to_wkt2(target), request);
+  auto coarse = read_band(*warped, 1, to_wkt2(target), request);
+  const terrain::GridGeometry natural = coarse.geometry();
+  // The fine grid, as large as memory allows: the reader's own budget per cell, for every
+  // fine cell.
+  const auto coarse_cells = static_cast<double>(natural.columns * natural.rows);
+  while (refinement > 1 && request.memory_limit_bytes > 0 &&
+         coarse_cells * static_cast<double>(refinement * refinement) * kRasterBytesPerCell >
+             static_cast<double>(request.memory_limit_bytes)) {
+    --refinement;
+  }
+  if (refinement <= 1) return {std::move(coarse), natural, 1};
+  const WarpGrid fine_grid{natural.x_left, natural.y_bottom(),           natural.x_right(),
+                           natural.y_top,  natural.columns * refinement, natural.rows * refinement};
+  auto fine_warp = warp_band(*dataset, request.band, target, request, fine_grid);
+  auto fine = read_band(*fine_warp, 1, to_wkt2(target), request);
+  // At the footprint's edge a fine centre may fall outside the source where the coarse one
+  // did not: keep the coarse surface there, so refining never adds nodata.
+  std::vector<double> values = fine.values();
+  const auto& g = fine.geometry();
+  for (std::size_t row = 0; row < g.rows; ++row) {
+    for (std::size_t col = 0; col < g.columns; ++col) {
+      double& v = values[row * g.columns + col];
+      if (std::isnan(v)) v = coarse.sample(g.cell_centre_x(col), g.cell_centre_y(row));
+    }
+  }
+  return {terrain::GriddedField(g, std::move(values), fine.crs_wkt(), fine.name()), natural,
+          refinement};
 }
 
 void write_geotiff(const terrain::GriddedField& field, const std::filesystem::path& path) {

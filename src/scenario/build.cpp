@@ -104,9 +104,18 @@ class SceneCrs {
   // a CRS in a scene that has one (or the reverse) could lie anywhere relative to the others.
   Field read(const RasterSpec& spec, const std::string& purpose, const std::string& setting,
              const std::string& json_path) {
+    return read_surface(spec, purpose, setting, json_path, 1).field;
+  }
+
+  // The same, as a surface refined `refinement` times where it is warped
+  // (io::read_raster_surface).
+  io::RasterSurface read_surface(const RasterSpec& spec, const std::string& purpose,
+                                 const std::string& setting, const std::string& json_path,
+                                 std::size_t refinement) {
     const io::RasterRequest r = request(spec, purpose, setting);
     try {
-      Field field = io::read_raster(r);
+      io::RasterSurface surface = io::read_raster_surface(r, refinement);
+      const Field& field = surface.field;
       if (known_ && field.crs_wkt().empty() != wkt_.empty()) {
         throw ScenarioError(json_path,
                             purpose + " '" + spec.path.string() +
@@ -121,7 +130,7 @@ class SceneCrs {
         target_ = spec.crs.empty() ? wkt_ : spec.crs;
         target_setting_ = spec.crs.empty() ? "the CRS of " + json_path : setting;
       }
-      return field;
+      return surface;
     } catch (const ScenarioError&) {
       throw;
     } catch (const std::runtime_error& e) {
@@ -422,10 +431,13 @@ Terrain read_terrain(const Scenario& scene) {
   terrain.domain = scene.domain;
   SceneCrs crs;
   if (const auto* spec = std::get_if<RasterBedSpec>(&scene.bed)) {
-    auto field = std::make_shared<const Field>(
-        crs.read(spec->raster, "bed raster", "bed.crs", "/bed/raster"));
+    auto surface = crs.read_surface(spec->raster, "bed raster", "bed.crs", "/bed/raster",
+                                    static_cast<std::size_t>(spec->refinement));
+    auto field = std::make_shared<const Field>(std::move(surface.field));
     terrain.domain = settle_domain(scene, *field);
     terrain.bed_raster = field;
+    terrain.bed_cells = surface.cells;
+    terrain.bed_refinement = surface.refinement;
     terrain.bed = std::make_shared<terrain::RasterBed>(field);
   } else {
     terrain.bed = analytic_bed(scene.bed);
@@ -598,6 +610,40 @@ swe::Simulation make_simulation(const Scenario& scene) {
   return std::move(build(scene).simulation);
 }
 
+namespace {
+
+// The smallest spacing the scene creates particles at; 0 when it creates none.
+double finest_spacing(const Scenario& scene) {
+  double finest = 0.0;
+  const auto consider = [&](double spacing) {
+    if (spacing > 0.0 && (finest == 0.0 || spacing < finest)) finest = spacing;
+  };
+  for (const auto& w : scene.water) consider(w.spacing_m);
+  for (const auto& in : scene.inflows) consider(in.spacing_m);
+  return finest;
+}
+
+maps::Bounds domain_bounds(const Terrain& terrain) {
+  const auto& d = terrain.domain;
+  return {d.x_min, d.x_max, d.y_min, d.y_max};
+}
+
+}  // namespace
+
+maps::CellAverages map_reader(const Scenario& scene, const Terrain& terrain,
+                              const swe::RegularGrid& grid) {
+  return maps::CellAverages(grid, terrain.bed, domain_bounds(terrain), finest_spacing(scene));
+}
+
+maps::CellAverages gauge_reader(const Scenario& scene, const Terrain& terrain,
+                                const swe::RegularGrid& grid, const Point& point) {
+  const double finest = finest_spacing(scene);
+  const double cap = finest > 0.0 ? kGaugeSpacings * finest : grid.dx;
+  const double width = std::min(grid.dx, cap), height = std::min(grid.dy, cap);
+  const swe::RegularGrid cell{point[0], point[1], width, height, 1, 1};
+  return maps::CellAverages(cell, terrain.bed, domain_bounds(terrain), finest);
+}
+
 swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain) {
   const auto& g = scene.output.grid;
   const Rectangle bounds = g.bounds.value_or(terrain.domain);
@@ -614,7 +660,7 @@ swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain) {
   // The bed raster's own cells, so that the maps line up with the DEM cell for cell. A cell
   // counts when it lies whole inside the bounds; 1e-9 of a cell forgives bounds that were
   // written out with rounding.
-  const auto& geo = terrain.bed_raster->geometry();
+  const auto& geo = terrain.bed_cells;
   constexpr double kForgive = 1e-9;
   const auto clamp_index = [](double index, std::size_t count) {
     return static_cast<std::size_t>(std::clamp(index, 0.0, static_cast<double>(count)));

@@ -188,6 +188,17 @@ double number(const Object& o, std::string_view key, const std::string& expected
   return finite_number(*v, o.path(key), expected);
 }
 
+int whole_number(const Object& o, std::string_view key, int low, int high,
+                 const std::string& meaning, int fallback) {
+  const std::string expected = "a whole number from " + std::to_string(low) + " to " +
+                               std::to_string(high) + " (" + meaning + ")";
+  const double x = number(o, key, expected, fallback);
+  if (x != std::floor(x) || x < low || x > high) {
+    throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
+  }
+  return static_cast<int>(x);
+}
+
 double positive(const Object& o, std::string_view key, const std::string& unit,
                 std::optional<double> fallback) {
   const std::string expected = "a number > 0 (" + unit + ")";

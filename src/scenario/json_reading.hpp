@@ -102,6 +102,9 @@ double number(const Object& o, std::string_view key, const std::string& expected
               std::optional<double> fallback = std::nullopt);
 double positive(const Object& o, std::string_view key, const std::string& unit,
                 std::optional<double> fallback = std::nullopt);
+// An integer within [low, high] written as a JSON number, such as 1000 or 1e3.
+int whole_number(const Object& o, std::string_view key, int low, int high,
+                 const std::string& meaning, int fallback);
 double non_negative(const Object& o, std::string_view key, const std::string& unit,
                     double fallback);
 // A number within [low, high], each end excluded when it is open.

@@ -510,7 +510,8 @@ BedSpec read_bed(const json* v, const std::filesystem::path& base_dir) {
   if (v == nullptr) return {};
   const std::string path = "/bed";
   const std::string one_kind = "exactly one of \"plane\", \"profile_x\" or \"raster\"";
-  const Object o(*v, path, {"plane", "profile_x", "raster", "crs"}, "an object with " + one_kind);
+  const Object o(*v, path, {"plane", "profile_x", "raster", "crs", "refinement"},
+                 "an object with " + one_kind);
   std::vector<std::string_view> kinds;
   for (std::string_view key : {"plane", "profile_x", "raster"}) {
     if (o.find(key) != nullptr) kinds.push_back(key);
@@ -519,13 +520,21 @@ BedSpec read_bed(const json* v, const std::filesystem::path& base_dir) {
     throw ScenarioError(path, "none of \"plane\", \"profile_x\" or \"raster\"", one_kind);
   }
   if (kinds.size() > 1) throw ScenarioError(path, several(kinds), one_kind);
-  if (kinds.front() != "raster" && o.find("crs") != nullptr) {
-    throw ScenarioError(o.path("crs"), "a \"crs\" with a " + std::string(kinds.front()) + " bed",
-                        "no \"crs\" here (it goes with a \"raster\" bed)");
+  for (std::string_view key : {"crs", "refinement"}) {
+    if (kinds.front() != "raster" && o.find(key) != nullptr) {
+      throw ScenarioError(
+          o.path(key),
+          "a \"" + std::string(key) + "\" with a " + std::string(kinds.front()) + " bed",
+          "no \"" + std::string(key) + "\" here (it goes with a \"raster\" bed)");
+    }
   }
   if (kinds.front() == "raster") {
-    return RasterBedSpec{RasterSpec{
+    RasterBedSpec spec{RasterSpec{
         file_path(o, "raster", "a raster of bed elevations (metres)", base_dir), crs_text(o)}};
+    spec.refinement =
+        whole_number(o, "refinement", 1, 16, "fine cells across each warped cell of the bed",
+                     RasterBedSpec::kDefaultBedRefinement);
+    return spec;
   }
   if (const json* plane = o.find("plane")) {
     const Object po(*plane, o.path("plane"), {"elevation", "slope", "origin"},

@@ -24,18 +24,6 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Navier-Stokes
 
-// An integer within [low, high] written as a JSON number, such as 1000 or 1e3.
-int whole_number(const Object& o, std::string_view key, int low, int high,
-                 const std::string& meaning, int fallback) {
-  const std::string expected = "a whole number from " + std::to_string(low) + " to " +
-                               std::to_string(high) + " (" + meaning + ")";
-  const double x = number(o, key, expected, fallback);
-  if (x != std::floor(x) || x < low || x > high) {
-    throw ScenarioError(o.path(key), describe(*o.find(key)), expected);
-  }
-  return static_cast<int>(x);
-}
-
 Names kernel_names() {
   const auto names = kernels::kernel_type_names();
   return Names(names.begin(), names.end());

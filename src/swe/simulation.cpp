@@ -522,12 +522,26 @@ void Simulation::take_summed_areas_as_created(std::vector<std::uint8_t> which) {
   if (which.size() != n)
     throw std::invalid_argument("take_summed_areas_as_created: one flag per fluid particle needed");
   if (n == 0) return;
-  update_fields(true);
-  for (std::size_t i = 0; i < n; ++i) {
-    // update_fields() sorted the particles: order_[i] is the index particle i had before.
-    if (which[order_[i]]) particles_.initial_area[i] = particles_.area[i];
+  // The radius cap is a multiple of A_0, so a particle whose first sum met the cap (a shore
+  // particle nearly alone in a finger of the lake) sums to another area once A_0 follows it:
+  // the areas are taken again until they are those their own sum gives.
+  constexpr int kMaxPasses = 20;
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    update_fields(true);
+    bool settled = true;
+    std::vector<std::uint8_t> sorted(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      // update_fields() sorted the particles: order_[i] is the index particle i had before.
+      sorted[i] = which[order_[i]];
+      if (!sorted[i]) continue;
+      const double before = particles_.initial_area[i];
+      particles_.initial_area[i] = particles_.area[i];
+      if (pass > 0 && std::abs(particles_.area[i] - before) > 1e-12 * before) settled = false;
+    }
+    which = std::move(sorted);
+    fresh_ = false;
+    if (pass > 0 && settled) break;
   }
-  fresh_ = false;
   has_snapshot_ = false;  // the areas changed: the next refresh takes a new snapshot
 }
 

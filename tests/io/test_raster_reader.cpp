@@ -77,6 +77,18 @@ GriddedField lon_lat_field(double lon_west, double lat_north, double step_deg, s
   return GriddedField(g, values, wkt_of("EPSG:4326"), "elevation");
 }
 
+// A coordinate transformation between two EPSG codes, x first (longitude, easting).
+std::unique_ptr<OGRCoordinateTransformation> transformation(int from_epsg, int to_epsg) {
+  OGRSpatialReference from, to;
+  from.importFromEPSG(from_epsg);
+  to.importFromEPSG(to_epsg);
+  from.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  to.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&from, &to));
+  REQUIRE(t);
+  return t;
+}
+
 }  // namespace
 
 TEST_CASE("a GeoTIFF written and read back is the same field", "[raster]") {
@@ -196,17 +208,8 @@ TEST_CASE("a longitude/latitude raster is warped to UTM", "[raster]") {
   CHECK(g.columns > 100);
   CHECK(g.rows > 80);
 
-  OGRSpatialReference lon_lat, utm;
-  lon_lat.importFromEPSG(4326);
-  utm.importFromEPSG(32616);
-  lon_lat.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  std::unique_ptr<OGRCoordinateTransformation> to_utm(
-      OGRCreateCoordinateTransformation(&lon_lat, &utm));
-  std::unique_ptr<OGRCoordinateTransformation> to_lon_lat(
-      OGRCreateCoordinateTransformation(&utm, &lon_lat));
-  REQUIRE(to_utm);
-  REQUIRE(to_lon_lat);
+  const auto to_utm = transformation(4326, 32616);
+  const auto to_lon_lat = transformation(32616, 4326);
 
   // Known points well inside the footprint: the value there is the source's, up to the
   // bilinear error of a surface linear in degrees seen on a grid in metres (0.1 is 1/100 of
@@ -360,4 +363,83 @@ TEST_CASE("the requested band is read, warped or not", "[raster]") {
   CHECK(field.sample(0.5 * (g.x_left + g.x_right()), 0.5 * (g.y_top + g.y_bottom())) ==
         Approx(200.0));
   CHECK(field.name() == "manning raster");
+}
+
+TEST_CASE("a warped raster is refined before it is interpolated, so that a rim keeps its height",
+          "[raster]") {
+  TempDir dir;
+  const auto path = dir.path() / "rim.tif";
+  // 3 arc-second cells (about 92 x 75 m here) on flat ground at 100 m, with one row of cells
+  // at 110 m running east-west: a rim one source cell wide, as a basin's edge in a DEM.
+  const double step = 1.0 / 1200.0;
+  const std::size_t columns = 60, rows = 60, rim_row = 31;
+  const GridGeometry g = grid_geometry(columns, rows, -84.40, 36.70, step, step);
+  std::vector<double> values(columns * rows, 100.0);
+  for (std::size_t col = 0; col < columns; ++col) values[rim_row * columns + col] = 110.0;
+  write_geotiff(GriddedField(g, values, wkt_of("EPSG:4326"), "elevation"), path);
+  const RasterRequest request{path, "EPSG:32616", "bed raster"};
+
+  const auto coarse = swemps::io::read_raster_surface(request, 1);
+  const auto fine = swemps::io::read_raster_surface(request, 4);
+  CHECK(coarse.refinement == 1);
+  REQUIRE(fine.refinement == 4);
+  // The natural cells are the unrefined warp's, and the fine cells tile them 4 x 4.
+  const auto& n = fine.cells;
+  CHECK(n.columns == coarse.cells.columns);
+  CHECK(n.rows == coarse.cells.rows);
+  CHECK(n.x_left == coarse.cells.x_left);
+  CHECK(n.y_top == coarse.cells.y_top);
+  const auto& f = fine.field.geometry();
+  CHECK(f.columns == 4 * n.columns);
+  CHECK(f.rows == 4 * n.rows);
+  CHECK(f.x_left == Approx(n.x_left).margin(1e-6));
+  CHECK(f.y_top == Approx(n.y_top).margin(1e-6));
+  CHECK(f.cell_width == Approx(n.cell_width / 4.0).epsilon(1e-12));
+
+  // Across the rim, well inside the footprint: the source's surface (bilinear between its
+  // centres) peaks at 110 m on the rim row's centre line. The fine surface has a centre
+  // within 1/8 of a natural cell (about 10 m) of any line, where the source's tent, a cell
+  // of about 92 m wide on each side, is within 1.2 m of its peak; the coarse surface may
+  // miss the peak by half a natural cell and then interpolates across it once more.
+  const auto to_utm = transformation(4326, 32616);
+  double fine_lowest_peak = 1e9, coarse_lowest_peak = 1e9;
+  for (int k = 10; k <= 50; k += 4) {
+    const double lon = g.cell_centre_x(static_cast<std::size_t>(k));
+    double fine_peak = 0.0, coarse_peak = 0.0;
+    for (int s = -200; s <= 200; ++s) {
+      double x = lon, y = g.cell_centre_y(rim_row) + s * step / 100.0;
+      REQUIRE(to_utm->Transform(1, &x, &y));
+      fine_peak = std::max(fine_peak, fine.field.sample(x, y));
+      coarse_peak = std::max(coarse_peak, coarse.field.sample(x, y));
+    }
+    fine_lowest_peak = std::min(fine_lowest_peak, fine_peak);
+    coarse_lowest_peak = std::min(coarse_lowest_peak, coarse_peak);
+  }
+  CHECK(fine_lowest_peak > 108.5);
+  CHECK(fine_lowest_peak > coarse_lowest_peak);
+  INFO("lowest rim crest: coarse " << coarse_lowest_peak << " m, fine " << fine_lowest_peak);
+
+  // Memory that cannot hold the fine cells takes the refinement down, never the read.
+  RasterRequest tight = request;
+  const double natural_cells = static_cast<double>(n.columns * n.rows);
+  tight.memory_limit_bytes =
+      static_cast<std::uint64_t>(natural_cells * 5.0 * swemps::io::kRasterBytesPerCell);
+  const auto limited = swemps::io::read_raster_surface(tight, 4);
+  CHECK(limited.refinement == 2);
+  CHECK(limited.field.geometry().columns == 2 * n.columns);
+}
+
+TEST_CASE("a raster in the scene's own CRS is its own surface, unrefined", "[raster]") {
+  TempDir dir;
+  const auto path = dir.path() / "bed.tif";
+  write_geotiff(utm_field(), path);
+  const auto surface = swemps::io::read_raster_surface({path, "EPSG:32616", "bed raster"}, 4);
+  CHECK(surface.refinement == 1);
+  CHECK(surface.field.geometry().columns == surface.cells.columns);
+  const auto expected = utm_field().values();
+  REQUIRE(surface.field.values().size() == expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    const double v = surface.field.values()[k];
+    CHECK((v == expected[k] || (std::isnan(v) && std::isnan(expected[k]))));
+  }
 }

@@ -235,13 +235,15 @@ std::pair<double, double> rest_in_tank(const std::array<double, Dim>& size, doub
 // over the wall row and the first fluid row reads 0.9875 rho g H at l0/H = 0.05); the
 // standard scheme's worst sample is 7.8 times rho g H off and its currents reach 0.65
 // sqrt(g H) in the same tank.
-TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 2D, 10 s", "[ns]") {
+TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 2D, 10 s",
+          "[ns][physics]") {
   const auto [worst, fastest] = rest_in_tank<2>({0.4, 0.3}, 0.2, 10.0);
   CHECK(worst < 0.02);
   CHECK(fastest < 0.01);
 }
 
-TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 10 s", "[ns]") {
+TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 10 s",
+          "[ns][physics]") {
   // 10 x 10 x 20 particles: l0/H = 0.05 as in 2D. In 3D the kernel's support is 1.8 l0: at
   // 2.1 l0 a mode grows in the interior after about a second and by 10 s particles run at
   // sqrt(g H) (docs/ns-dam-break.md, "Water at rest"); in 2D it is 1.8 l0 that breaks down.

@@ -511,7 +511,7 @@ TEST_CASE("the valley-flood case builds on the shipped DEM and accounts for its 
 }
 
 TEST_CASE("the valley-lakes case: two lakes over the DEM stay still for the hour before the flood",
-          "[scenario][build]") {
+          "[scenario][build][physics]") {
   // Two natural basins of the DEM filled from a point at one particle per DEM cell, with the
   // case's default numerics: splitting, merging, particle shifting, no eddy viscosity. Three
   // things once set such lakes moving (docs/method.md, "Lakes over the Jacksboro DEM"): lower

@@ -287,7 +287,7 @@ TEST_CASE("conservative scheme: energy never grows in a closed box", "[swe][cons
   CHECK(e1 < e0);
 }
 
-TEST_CASE("conservative scheme: water at rest stays at rest", "[swe][conservative]") {
+TEST_CASE("conservative scheme: water at rest stays at rest", "[swe][conservative][physics]") {
   // 20,000 steps (180 s) in a closed box on each arrangement. None of them starts in exact
   // balance: the square lattice is an equilibrium but not the arrangement of least energy,
   // the hexagonal one is unbalanced at the walls and the jittered one everywhere. Each

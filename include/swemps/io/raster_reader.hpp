@@ -46,6 +46,23 @@ inline constexpr double kRasterBytesPerCell = 32.0;
 // problem.
 terrain::GriddedField read_raster(const RasterRequest& request);
 
+// A raster as a surface to sample, with the cells it came on. A raster already in the target
+// CRS is its own surface (refinement 1). A warped one is warped twice from the source: once
+// onto the grid GDAL suggests (`cells`: the raster's natural cells in the scene's CRS, which
+// the output maps use), and once onto that grid with every cell split into refinement x
+// refinement (`field`), so that bilinear interpolation between the fine centres follows the
+// source's own surface rather than a coarse resampling of it: interpolating between the
+// centres of coarse warped cells lowers rims, saddles and channel banks (docs/method.md, "The
+// bed"). The refinement is reduced, down to 1, while the fine cells would need more memory
+// than request.memory_limit_bytes allows. Fine cells that the warp leaves nodata while the
+// coarse surface has a value there (at the footprint's edge) take the coarse surface's value.
+struct RasterSurface {
+  terrain::GriddedField field;
+  terrain::GridGeometry cells;
+  std::size_t refinement = 1;
+};
+RasterSurface read_raster_surface(const RasterRequest& request, std::size_t refinement);
+
 // Writes a field as a single-band, deflate-compressed Float64 GeoTIFF with NaN as nodata (for
 // fixtures and tools). Throws std::runtime_error naming the file if it cannot.
 void write_geotiff(const terrain::GriddedField& field, const std::filesystem::path& path);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "swemps/maps/cell_averages.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/ns/tank.hpp"
 #include "swemps/scenario/scenario.hpp"
@@ -22,8 +23,12 @@ namespace swemps::scenario {
 struct Terrain {
   Rectangle domain;                                         // as given, or the bed raster's extent
   std::shared_ptr<const swe::BedSource> bed;                // null: flat at z = 0
-  std::shared_ptr<const terrain::GriddedField> bed_raster;  // raster beds only
-  std::shared_ptr<const terrain::GriddedField> roughness;   // Manning's n map only
+  std::shared_ptr<const terrain::GriddedField> bed_raster;  // raster beds only: the surface
+  // A raster bed's natural cells: the file's own, or those its warp to the scene's CRS lands
+  // on. bed_raster splits each of them bed_refinement x bed_refinement times.
+  terrain::GridGeometry bed_cells;
+  std::size_t bed_refinement = 1;
+  std::shared_ptr<const terrain::GriddedField> roughness;  // Manning's n map only
   // Per water body, the depth raster it names; null for the other bodies.
   std::vector<std::shared_ptr<const terrain::GriddedField>> water_depth;
   std::string crs_wkt;  // the scene's CRS (the bed raster's, or another raster's); empty: none
@@ -60,11 +65,25 @@ BuiltScene build(const Scenario& scene);
 // build(scene).simulation, for callers that need nothing else.
 swe::Simulation make_simulation(const Scenario& scene);
 
-// The output grid: the bed raster's own cells that lie whole inside the grid bounds when the
-// scene gives a raster bed and no grid spacing; otherwise cell centres covering the bounds at
-// the requested spacing. Bounds default to the domain. Throws ScenarioError when no raster
-// cell lies whole inside the bounds.
+// The output grid: the bed raster's natural cells (Terrain::bed_cells) that lie whole inside the
+// grid bounds when the scene gives a raster bed and no grid spacing; otherwise cell centres
+// covering the bounds at the requested spacing. Bounds default to the domain. Throws ScenarioError
+// when no raster cell lies whole inside the bounds.
 swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain);
+
+// How the scene's maps read its particles on `grid`: cell averages of the particles' water
+// over the scene's bed, within the domain, sampled finely enough for the finest spacing the
+// scene creates particles at.
+maps::CellAverages map_reader(const Scenario& scene, const Terrain& terrain,
+                              const swe::RegularGrid& grid);
+
+// How a gauge at `point` reads the particles: the cell averages of one cell centred on it, as
+// wide as a cell of `grid` but at most kGaugeSpacings of the finest particle spacing, so that
+// the water surface it reads is an average over several particles, as a grid model's gauge
+// reads its cell. The depth at the gauge is that surface less the bed at the point.
+maps::CellAverages gauge_reader(const Scenario& scene, const Terrain& terrain,
+                                const swe::RegularGrid& grid, const Point& point);
+inline constexpr double kGaugeSpacings = 4.0;
 
 // Model ns. The tank: the domain's plan (its x range; and y range in 3D) from the floor (the
 // level bed's elevation, 0 without a bed) up to ns.tank_height; each water body a box from

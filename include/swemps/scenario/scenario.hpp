@@ -93,6 +93,10 @@ struct ProfileBedSpec {
 // is warped to it, and the output is georeferenced in it.
 struct RasterBedSpec {
   RasterSpec raster;
+  // A warped raster's cells are split refinement x refinement before the bed is interpolated
+  // (io::read_raster_surface): the bed follows the source DEM, not a coarse resampling of it.
+  int refinement = kDefaultBedRefinement;
+  static constexpr int kDefaultBedRefinement = 4;
 };
 using BedSpec = std::variant<std::monostate, PlaneBedSpec, ProfileBedSpec, RasterBedSpec>;
 

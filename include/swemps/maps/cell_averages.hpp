@@ -1,0 +1,106 @@
+#pragma once
+// What a map cell reads: the water the particles hold in it. Each particle's volume is spread
+// over the ground its kernel covers, weighted by the kernel and by how deep the particle's own
+// surface stands over the bed there, and the shares that fall in a cell are added up; the
+// cell's depth is that volume over its area, its velocity the share-weighted velocity.
+// So (docs/outputs.md, "What a map cell means"):
+//  - the map holds the particles' volume: every particle's shares add up to its volume, and a
+//    share is lost only where it falls outside the map (output grid bounds smaller than the
+//    domain), never at a wall or between cell centres, whatever the cell size. The kernel is
+//    mirrored at walls (by the walls' ghost particles, as in the depth sum) and at the
+//    domain's edges, so uniform water reads uniform up to them, and no share falls behind a
+//    wall;
+//  - no cell reads water from a particle whose surface stands below the bed of the whole
+//    cell: a share goes only where the particle's surface z_b(x_i) + h_i stands over the bed;
+//  - the depth is the mean over the cell, as a grid model's finite volume holds it, not a
+//    point sample of the kernel sum at the cell's centre (which the spiky kernel's peak makes
+//    jump as particles pass over the centre).
+// The ground is sampled at sub-points, at most the finest particle spacing apart and at least
+// one a cell: each share is a quadrature of the kernel at them, so within a sub-point spacing
+// of a wall or a cell edge a share may land in the neighbouring cell (measured: uniform water
+// reads its depth within 0.6 % inside, 1.2 % in a corner of the domain), whose bed elevations are
+// read once. Results do not depend on the number of threads.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "swemps/particles/swe_particles.hpp"
+#include "swemps/swe/bed.hpp"
+#include "swemps/swe/operators.hpp"
+#include "swemps/swe/particle_kernel.hpp"
+
+namespace swemps::maps {
+
+// What the map's cells hold (ny * nx values each, x fastest): depth (the water's volume over
+// the cell's area), u and v (the particles' momentum over their volume there), and the water
+// surface, the volume-weighted mean of the surfaces z_b + h of the particles whose water is
+// there. u, v and the surface are NaN in a cell without water.
+struct CellFields {
+  std::vector<double> depth, u, v, surface;
+};
+
+// The domain: sub-points outside it take no share, and the kernel is mirrored at its edges.
+struct Bounds {
+  double x_min, x_max, y_min, y_max;
+};
+
+class CellAverages {
+ public:
+  // `bed` may be null (flat at z = 0). `finest_spacing_m` is the smallest spacing the scene
+  // creates particles at; sub-points are at most that far apart (and at most a cell apart),
+  // capped at kMaxSubdivisions across a cell. A fields() call is not safe to run alongside
+  // another on the same object (it keeps its scratch space).
+  // Up to `stored_sub_points` sub-points have their bed read once and kept; beyond, each share
+  // reads the bed where it falls (the same values, more slowly).
+  CellAverages(const swe::RegularGrid& grid, std::shared_ptr<const swe::BedSource> bed,
+               Bounds domain, double finest_spacing_m,
+               std::size_t stored_sub_points = kMaxStoredSubPoints);
+
+  CellFields fields(const particles::SweParticles& p, const swe::ParticleKernel& w) const;
+
+  // Sub-points across one cell, in each direction.
+  std::size_t subdivisions() const { return sub_; }
+
+  static constexpr std::size_t kMaxSubdivisions = 32;
+  // Sub-points whose bed is read once and kept (128 MB); beyond, it is read at each share.
+  static constexpr std::size_t kMaxStoredSubPoints = std::size_t{1} << 24;
+
+ private:
+  // What one particle puts in one cell: a fraction of its volume. kOffMap: inside the domain
+  // but outside the map's bounds.
+  struct Share {
+    std::size_t cell;
+    double fraction;
+  };
+  static constexpr std::size_t kOffMap = static_cast<std::size_t>(-1);
+  using Point = std::array<double, 2>;
+  // Appends fluid particle j's shares, which add up to 1. `ghosts`: its wall ghosts' indices;
+  // `images`: scratch space.
+  template <class Kernel>
+  void shares_of(const particles::SweParticles& p, std::size_t j,
+                 std::span<const std::uint32_t> ghosts, const Kernel& kernel,
+                 std::vector<Point>& images, std::vector<Share>& shares) const;
+  double sub_bed(long si, long sk) const;
+
+  swe::RegularGrid grid_;
+  std::shared_ptr<const swe::BedSource> bed_;
+  Bounds domain_;
+  std::size_t sub_ = 1;
+  double sdx_ = 0.0, sdy_ = 0.0;    // sub-point spacing, m
+  double sx0_ = 0.0, sy0_ = 0.0;    // the first sub-point, m
+  long snx_ = 0, sny_ = 0;          // sub-points over the grid
+  std::vector<double> bed_at_sub_;  // sny_ * snx_, x fastest; empty: not kept
+  // Scratch space of fields(), kept between calls: each block's shares, and where each
+  // particle's end in its block's list.
+  mutable std::vector<std::vector<Share>> shares_;
+  mutable std::vector<std::size_t> ends_;
+  mutable std::vector<std::size_t>
+      ghost_start_;  // fluid particle j's ghosts: [start[j], start[j+1])
+  mutable std::vector<std::uint32_t> ghost_list_;
+};
+
+}  // namespace swemps::maps
