@@ -138,7 +138,7 @@ TEST_CASE("the valley flood at 60 m: maps hold the water, and the depths are the
   CHECK(compared == times.size());
 
   // Against the grid-model reference. Measured with this code: mean absolute difference
-  // 0.409 m, bias +0.217 m (before it: 0.47 and +0.24 m at 60 m, 0.49 and +0.33 m at the
+  // 0.405 m, bias +0.210 m (before it: 0.47 and +0.24 m at 60 m, 0.49 and +0.33 m at the
   // shipped 30 m). The bounds leave a tenth for other compilers' round-off, which a 3 h flood
   // grows; a change of the numerics that costs accuracy on real terrain fails them.
   const auto reference = reference_on(map);
