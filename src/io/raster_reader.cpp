@@ -210,6 +210,12 @@ GDALDatasetUniquePtr warp_band(GDALDataset& source, int band_index,
   return warped;
 }
 
+// A raster read on its own cells: its own surface, unrefined.
+RasterSurface as_read(terrain::GriddedField field) {
+  const terrain::GridGeometry cells = field.geometry();
+  return {std::move(field), cells, 1};
+}
+
 // Why GDAL could not open a dataset, in the user's terms. A name GDAL cannot open may still be
 // a dataset name rather than a file, so the file is looked at only after GDAL has had its try.
 std::string why_not_opened(const std::filesystem::path& name) {
@@ -329,9 +335,7 @@ RasterSurface read_raster_surface(const RasterRequest& request, std::size_t refi
            request.target_crs + "\"; give the file a CRS, or remove " + request.crs_setting +
            " to take its coordinates as metres");
     }
-    auto field = read_band(*dataset, request.band, "", request);
-    auto cells = field.geometry();
-    return {std::move(field), cells, 1};
+    return as_read(read_band(*dataset, request.band, "", request));
   }
   if (source_crs->IsGeographic()) {
     if (!has_target) {
@@ -346,9 +350,7 @@ RasterSurface read_raster_surface(const RasterRequest& request, std::size_t refi
            "; the solver works in metres, so reproject it to a CRS in metres first");
     }
     if (!has_target || source_crs->IsSame(&target)) {
-      auto field = read_band(*dataset, request.band, to_wkt2(*source_crs), request);
-      auto cells = field.geometry();
-      return {std::move(field), cells, 1};
+      return as_read(read_band(*dataset, request.band, to_wkt2(*source_crs), request));
     }
   } else {
     fail("has a CRS that is neither projected nor geographic");
@@ -364,7 +366,7 @@ RasterSurface read_raster_surface(const RasterRequest& request, std::size_t refi
              static_cast<double>(request.memory_limit_bytes)) {
     --refinement;
   }
-  if (refinement <= 1) return {std::move(coarse), natural, 1};
+  if (refinement <= 1) return as_read(std::move(coarse));
   const WarpGrid fine_grid{natural.x_left, natural.y_bottom(),           natural.x_right(),
                            natural.y_top,  natural.columns * refinement, natural.rows * refinement};
   auto fine_warp = warp_band(*dataset, request.band, target, request, fine_grid);
