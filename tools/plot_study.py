@@ -17,6 +17,13 @@ Runs that broke down or failed have no error; they are listed on standard output
 
     /usr/bin/python3 tools/plot_study.py cases/ritter-50m/ritter-50m-study.csv -o study.png
     /usr/bin/python3 tools/plot_study.py TABLE.csv -o study.png --error upstream_fan_l1
+
+A table of a study against a reference map (max_depth_mad_m column) plots the mean absolute
+difference of the maximum depth, in metres, by default; --mark adds another model's result
+to the cost panel, such as a grid model's on the same reference:
+
+    /usr/bin/python3 tools/plot_study.py cases/valley-flood/valley-flood-study.csv \
+        -o valley-study.png --mark "FV1 82.6 m=2.5,0.40"
 """
 import argparse
 import csv
@@ -105,18 +112,38 @@ def split_series(rows, error):
     return series
 
 
+def error_label(error_name):
+    """The error axis: fan errors are relative to h0, map differences in metres."""
+    return f"{error_name} / h0" if "fan" in error_name else f"{error_name} (m)"
+
+
 def finish_axes(ax, xlabel, error_name, title):
     """Log-log axes with labels, grid and legend, as both panels have them."""
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel(xlabel)
-    ax.set_ylabel(f"{error_name} / h0")
+    ax.set_ylabel(error_label(error_name))
     ax.set_title(title)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
 
 
-def plot_cost(ax, series, error_name):
+def plot_marks(ax, marks):
+    """Other models' (label, wall time, error) as black stars."""
+    for label, wall, error in marks:
+        ax.plot([wall], [error], "*", color="k", markersize=11)
+        ax.annotate(label, (wall, error), textcoords="offset points", xytext=(6, -10), fontsize=8)
+
+
+def parse_mark(text):
+    """ "LABEL=WALL_S,ERROR" -> (label, wall, error)."""
+    label, _, numbers = text.rpartition("=")
+    wall, error = (float(v) for v in numbers.split(","))
+    return label, wall, error
+
+
+def plot_cost(ax, series, error_name, marks=()):
+    plot_marks(ax, marks)
     everything = []
     for k, (label, points) in enumerate(series.values()):
         marker = MARKERS[k % len(MARKERS)]
@@ -165,16 +192,21 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("table", help="the CSV table of swe-mps study")
     parser.add_argument("-o", "--output", default="study.png", help="the PNG to write")
-    parser.add_argument("--error", default="fan_l1",
-                        help="the error column: fan_l1 (default), fan_l2, fan_linf, "
-                             "upstream_fan_l1")
+    parser.add_argument("--error",
+                        help="the error column: fan_l1 (the default of an analytic reference), "
+                             "fan_l2, fan_linf, upstream_fan_l1; max_depth_mad_m (the default "
+                             "of a reference map)")
+    parser.add_argument("--mark", action="append", default=[], type=parse_mark,
+                        metavar="LABEL=WALL_S,ERROR",
+                        help="another model's wall time and error, drawn as a star")
     args = parser.parse_args()
     rows = read_table(args.table)
-    series = split_series(rows, args.error)
-    report(rows, series, args.error)
+    error = args.error or ("max_depth_mad_m" if rows and "max_depth_mad_m" in rows[0] else "fan_l1")
+    series = split_series(rows, error)
+    report(rows, series, error)
     fig, (cost, convergence) = plt.subplots(1, 2, figsize=(13, 5.5))
-    plot_cost(cost, series, args.error)
-    plot_convergence(convergence, series, args.error)
+    plot_cost(cost, series, error, args.mark)
+    plot_convergence(convergence, series, error)
     fig.tight_layout()
     fig.savefig(args.output, dpi=130)
     print(f"wrote {args.output}")

@@ -29,13 +29,17 @@
 #include <optional>
 #include <sstream>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "swemps/cli/child_processes.hpp"
 #include "swemps/cli/output_target.hpp"
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/run_command.hpp"
+#include "swemps/cli/runs.hpp"
+#include "swemps/cli/study_reference.hpp"
 #include "swemps/cli/timing.hpp"
+#include "swemps/io/flood_products.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
 #include "swemps/scenario/study_file.hpp"
@@ -141,22 +145,14 @@ void record_progress(const swe::Simulation& sim, RunRecord& r) {
   r.relative_volume_change = sim.relative_volume_change();
 }
 
-// The scene (knobs applied) from t = 0 to its end time, measured against the reference.
-// A breakdown or failure is recorded with how far the run got.
-RunRecord run_scene(const scenario::Scenario& scene, const study::Study& study) {
-  RunRecord r;
-  std::optional<swe::Simulation> sim;
-  const auto start = Clock::now();
+// Runs `body`, which fills `r` and leaves it "ok" if it returns; a breakdown or any other
+// failure is recorded with its message instead. Returns whether the run finished.
+template <class Body>
+bool recorded(RunRecord& r, Body&& body) {
   try {
-    sim.emplace(scenario::make_simulation(scene));
-    r.particles_start = static_cast<double>(sim->particles().fluid_count());
-    sim->advance_to(scene.end_time_s);
-    sim->refresh();
-    r.wall_s = seconds_since(start);
-    record_progress(*sim, r);
-    record_errors(study::measure(*sim, scene, study.reference, study.profile_spacing_ratio), r);
+    body();
     r.status = "ok";
-    return r;
+    return true;
   } catch (const swe::SimulationError& e) {
     r.status = "breakdown";
     r.message = e.what();
@@ -164,14 +160,57 @@ RunRecord run_scene(const scenario::Scenario& scene, const study::Study& study) 
     r.status = "failed";
     r.message = e.what();
   }
+  return false;
+}
+
+// The scene (knobs applied) from t = 0 to its end time, measured against the reference.
+// A breakdown or failure is recorded with how far the run got.
+RunRecord run_scene(const scenario::Scenario& scene, const study::Study& study) {
+  RunRecord r;
+  std::optional<swe::Simulation> sim;
+  const auto start = Clock::now();
+  const bool finished = recorded(r, [&] {
+    sim.emplace(scenario::make_simulation(scene));
+    r.particles_start = static_cast<double>(sim->particles().fluid_count());
+    sim->advance_to(scene.end_time_s);
+    sim->refresh();
+    r.wall_s = seconds_since(start);
+    record_progress(*sim, r);
+    record_errors(study::measure(*sim, scene, std::get<study::RitterReference>(study.reference),
+                                 study.profile_spacing_ratio),
+                  r);
+  });
+  if (finished) return r;
   r.wall_s = seconds_since(start);
   if (sim) record_progress(*sim, r);
+  return r;
+}
+
+// The scene run as `swe-mps run` runs it, into `file`: for a map reference, the run is
+// measured by its written maximum depth and gauges, which the parent compares.
+RunRecord run_scene_to_file(scenario::Scenario scene, const std::filesystem::path& scene_file,
+                            const std::filesystem::path& file, const std::string& label) {
+  RunRecord r;
+  scene.output.path = file;
+  const RunContext context{scene_file, label, false};
+  const auto start = Clock::now();
+  const bool finished = recorded(r, [&] {
+    const RunReport report = run_swe(scene, context);
+    r.wall_s = report.wall_s;
+    r.particles_start = static_cast<double>(report.fluid_particles);
+    r.particles_end = static_cast<double>(report.final_fluid_particles);
+    r.steps = static_cast<double>(report.steps);
+    r.particle_steps = static_cast<double>(report.particle_steps);
+    r.relative_volume_change = report.relative_volume_change;
+  });
+  if (!finished) r.wall_s = seconds_since(start);
   return r;
 }
 
 // The child's whole life: never returns, and leaves through _exit so that nothing the parent
 // set up (buffered output, atexit handlers, the partial table) is flushed or run twice.
 [[noreturn]] void child_main(const scenario::Scenario& scene, const study::Study& study,
+                             const std::filesystem::path& result, const std::string& label,
                              int threads, int result_fd, pid_t parent) {
   // A study stopped by a signal to its parent alone stops its runs too, rather than leaving
   // them to run on unseen. The parent may have gone before the request took effect.
@@ -180,7 +219,9 @@ RunRecord run_scene(const scenario::Scenario& scene, const study::Study& study) 
   try {
     omp_set_num_threads(threads);
     spdlog::set_level(spdlog::level::warn);  // the parent reports each run
-    write_all(result_fd, encode(run_scene(scene, study)));
+    write_all(result_fd,
+              encode(result.empty() ? run_scene(scene, study)
+                                    : run_scene_to_file(scene, study.scene, result, label)));
     ::close(result_fd);
     ::_exit(0);
   } catch (...) {
@@ -195,6 +236,7 @@ struct PlannedRun {
   study::RunKnobs knobs;
   scenario::Scenario scene;  // the base scene with the knobs applied
   double expected_cost = 1.0;
+  std::filesystem::path result;  // map references: the run's netCDF file; else empty
 };
 
 // Particles go as spacing^-2 in the plane and steps as 1 / (spacing cfl) (eq 13): the relative
@@ -205,7 +247,21 @@ double expected_cost(const scenario::Scenario& scene) {
   return 1.0 / (spacing * spacing * spacing * scene.numerics.cfl);
 }
 
-std::vector<PlannedRun> plan_runs(const study::Study& study, const scenario::Scenario& base) {
+// Where the runs of a study measured by maps keep their files: <table stem>-runs/ beside the
+// table, one run-<k>.nc each (and its gauge table), for the user to look at after.
+std::filesystem::path runs_folder(const std::filesystem::path& table) {
+  std::filesystem::path folder = table;
+  folder.replace_extension();
+  folder += "-runs";
+  return folder;
+}
+
+bool measured_by_maps(const study::Study& study) {
+  return !std::holds_alternative<study::RitterReference>(study.reference);
+}
+
+std::vector<PlannedRun> plan_runs(const study::Study& study, const scenario::Scenario& base,
+                                  const std::filesystem::path& table) {
   std::vector<PlannedRun> runs;
   std::vector<study::RunKnobs> expanded;
   try {
@@ -217,9 +273,12 @@ std::vector<PlannedRun> plan_runs(const study::Study& study, const scenario::Sce
                                   "study");
   }
   for (const study::RunKnobs& knobs : expanded) {
-    PlannedRun run{knobs, base, 1.0};
+    PlannedRun run{knobs, base, 1.0, {}};
     study::apply(knobs, run.scene);
     run.expected_cost = expected_cost(run.scene);
+    if (measured_by_maps(study)) {
+      run.result = runs_folder(table) / ("run-" + std::to_string(runs.size()) + ".nc");
+    }
     runs.push_back(std::move(run));
   }
   return runs;
@@ -241,8 +300,11 @@ std::vector<std::size_t> start_order(const std::vector<PlannedRun>& runs) {
 Child start_child(const PlannedRun& run, std::size_t index, const study::Study& study,
                   int threads) {
   const pid_t parent = ::getpid();
-  return fork_child(index,
-                    [&](int write_fd) { child_main(run.scene, study, threads, write_fd, parent); });
+  const std::string label =
+      "swe-mps study, run " + std::to_string(index) + " (" + study::describe(run.knobs) + ")";
+  return fork_child(index, [&](int write_fd) {
+    child_main(run.scene, study, run.result, label, threads, write_fd, parent);
+  });
 }
 
 // What the wait status says about a child that sent no record.
@@ -251,10 +313,12 @@ std::string lost_child(int status) {
          (WIFSIGNALED(status) ? std::string() : std::string(" without a result"));
 }
 
-// A finished run: its record and the peak memory the kernel measured for its process.
+// A finished run: its record and the peak memory the kernel measured for its process; for a
+// map reference, its measures (or why they could not be taken).
 struct Row {
   RunRecord record;
   double peak_memory_mib = kNaN;
+  std::optional<MapMeasures> map;
 };
 
 Row collect(const Child& child, int status, const rusage& usage, const std::string& output,
@@ -277,21 +341,64 @@ Row collect(const Child& child, int status, const rusage& usage, const std::stri
 // ---------------------------------------------------------------------------------------------
 // The table
 
-std::vector<std::string> table_columns() {
+// What the table's columns are beyond the runs' knobs and costs: the fan's errors for an
+// analytic reference; the maximum depth's and the gauge peaks' for a map reference.
+struct TableLayout {
+  bool maps = false;
+  std::vector<std::string> gauges;  // map references: the gauges whose peaks are compared
+};
+
+std::vector<std::string> table_columns(const TableLayout& layout) {
   std::vector<std::string> columns{"run",      "spacing_m", "splitting_threshold", "scheme",
                                    "gradient", "kappa",     "dissipation",         "shifting",
                                    "cfl",      "alpha_e"};
   for (const auto& f : kCountFields) columns.emplace_back(f.name);
   columns.emplace_back("peak_memory_mib");
-  for (const auto& f : kErrorFields) columns.emplace_back(f.name);
-  columns.emplace_back("front_error_m");
+  if (layout.maps) {
+    for (const char* name :
+         {"max_depth_mad_m", "max_depth_bias_m", "within_0.5m", "wet_csi", "compared_cells"}) {
+      columns.emplace_back(name);
+    }
+    for (const auto& g : layout.gauges) {
+      const std::string name = io::column_name(g);
+      columns.push_back(name + "_peak_m");
+      columns.push_back(name + "_peak_error_m");
+      columns.push_back(name + "_peak_time_error_s");
+    }
+  } else {
+    for (const auto& f : kErrorFields) columns.emplace_back(f.name);
+    columns.emplace_back("front_error_m");
+  }
   columns.emplace_back(kVolumeField.name);
   columns.emplace_back("status");
   columns.emplace_back("message");
+  if (layout.maps) columns.emplace_back("result");
   return columns;
 }
 
-std::string table_line(std::size_t index, const PlannedRun& run, const Row& row) {
+// The map measures' fields, in table_columns' order; unknown (NaN) when not taken.
+std::vector<std::string> map_fields(const TableLayout& layout,
+                                    const std::optional<MapMeasures>& m) {
+  std::vector<std::string> fields;
+  const auto& d = m ? m->max_depth : study::MaxDepthComparison{kNaN, kNaN, kNaN, kNaN, 0};
+  for (const double v :
+       {d.mean_abs_difference_m, d.bias_m, d.within_half_metre, d.critical_success_index}) {
+    fields.push_back(number_text(v));
+  }
+  fields.push_back(m ? std::to_string(d.compared_cells) : number_text(kNaN));
+  for (std::size_t g = 0; g < layout.gauges.size(); ++g) {
+    const bool known = m && g < m->gauges.size();
+    for (const double v :
+         {known ? m->gauges[g].peak_m : kNaN, known ? m->gauges[g].depth_error_m : kNaN,
+          known ? m->gauges[g].time_error_s : kNaN}) {
+      fields.push_back(number_text(v));
+    }
+  }
+  return fields;
+}
+
+std::string table_line(const TableLayout& layout, std::size_t index, const PlannedRun& run,
+                       const Row& row) {
   const auto& scene = run.scene;
   const RunRecord& r = row.record;
   const bool seed = scene.numerics.scheme == swe::SchemeKind::seed;
@@ -307,11 +414,16 @@ std::string table_line(std::size_t index, const PlannedRun& run, const Row& row)
       seed ? number_text(scene.numerics.alpha_e) : std::string()};
   for (const auto& f : kCountFields) fields.push_back(number_text(r.*f.member));
   fields.push_back(number_text(row.peak_memory_mib));
-  for (const auto& f : kErrorFields) fields.push_back(number_text(r.*f.member));
-  fields.push_back(number_text(r.front_x_m - r.exact_front_x_m));
+  if (layout.maps) {
+    for (auto& f : map_fields(layout, row.map)) fields.push_back(std::move(f));
+  } else {
+    for (const auto& f : kErrorFields) fields.push_back(number_text(r.*f.member));
+    fields.push_back(number_text(r.front_x_m - r.exact_front_x_m));
+  }
   fields.push_back(number_text(r.relative_volume_change));
   fields.push_back(r.status);
   fields.push_back(text_field(r.message));
+  if (layout.maps) fields.push_back(text_field(run.result.string()));
   std::string line;
   for (std::size_t k = 0; k < fields.size(); ++k) line += (k > 0 ? "," : "") + fields[k];
   return line + "\n";
@@ -322,8 +434,8 @@ std::string table_line(std::size_t index, const PlannedRun& run, const Row& row)
 // its final name.
 class StudyTable {
  public:
-  StudyTable(std::filesystem::path path, const std::vector<PlannedRun>& runs)
-      : path_(std::move(path)), runs_(runs), rows_(runs.size()) {
+  StudyTable(std::filesystem::path path, const std::vector<PlannedRun>& runs, TableLayout layout)
+      : path_(std::move(path)), runs_(runs), layout_(std::move(layout)), rows_(runs.size()) {
     partial_path_ = path_;
     partial_path_ += ".partial";
     write();  // an unwritable place is found before any run
@@ -349,11 +461,11 @@ class StudyTable {
  private:
   void write() const {
     std::string text;
-    const auto columns = table_columns();
+    const auto columns = table_columns(layout_);
     for (std::size_t k = 0; k < columns.size(); ++k) text += (k > 0 ? "," : "") + columns[k];
     text += "\n";
     for (std::size_t i = 0; i < rows_.size(); ++i) {
-      if (rows_[i]) text += table_line(i, runs_[i], *rows_[i]);
+      if (rows_[i]) text += table_line(layout_, i, runs_[i], *rows_[i]);
     }
     errno = 0;
     std::FILE* file = std::fopen(partial_path_.c_str(), "w");
@@ -369,6 +481,7 @@ class StudyTable {
 
   std::filesystem::path path_, partial_path_;
   const std::vector<PlannedRun>& runs_;
+  TableLayout layout_;
   std::vector<std::optional<Row>> rows_;
 };
 
@@ -387,6 +500,12 @@ std::string finished_line(std::size_t run, std::size_t total, const PlannedRun& 
       fmt::format("run {}/{} ({}): {}", run + 1, total, study::describe(planned.knobs), r.status);
   if (!std::isnan(r.wall_s)) line += fmt::format(", {:.3g} s", r.wall_s);
   line += fmt::format(", {:.0f} MiB", row.peak_memory_mib);
+  if (r.status == "ok" && !planned.result.empty()) {
+    if (!row.map) return line + ", " + planned.result.filename().string();
+    const auto& d = row.map->max_depth;
+    return line + fmt::format(", max depth MAD {:.3f} m, bias {:+.3f} m, CSI {:.3f}",
+                              d.mean_abs_difference_m, d.bias_m, d.critical_success_index);
+  }
   if (r.status == "ok") return line + fmt::format(", fan L1 {:.4g}", r.fan_l1);
   // A breakdown's message is long (particle, position, time); the table has all of it.
   constexpr std::size_t kShown = 160;
@@ -395,27 +514,32 @@ std::string finished_line(std::size_t run, std::size_t total, const PlannedRun& 
 }
 
 void log_summary(const StudyTable& table, const std::vector<PlannedRun>& runs, double wall_s,
-                 int jobs, int threads) {
+                 int jobs, int threads, bool maps) {
   std::size_t ok = 0, broke_down = 0, timed_out = 0, failed = 0;
   std::vector<study::CostError> points;
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const RunRecord& r = table.row(i)->record;
+    const Row& row = *table.row(i);
+    const RunRecord& r = row.record;
     ok += r.status == "ok";
     broke_down += r.status == "breakdown";
     timed_out += r.status == "timeout";
     failed += r.status == "failed";
-    points.push_back(r.status == "ok" ? study::CostError{r.wall_s, r.fan_l1}
+    const double error =
+        maps ? (row.map ? row.map->max_depth.mean_abs_difference_m : kNaN) : r.fan_l1;
+    points.push_back(r.status == "ok" ? study::CostError{r.wall_s, error}
                                       : study::CostError{kNaN, kNaN});
   }
+  const char* error_name = maps ? "max depth MAD" : "fan L1";
   spdlog::info(
       "study: {} runs ({} ok, {} broke down, {} stopped at the time limit, {} failed) in {:.1f} s, "
       "{} at once, {} each",
       runs.size(), ok, broke_down, timed_out, failed, wall_s, jobs, threads_text(threads));
   spdlog::info(
-      "Pareto front, wall time against fan L1 (no other run is both faster and more "
-      "accurate):");
+      "Pareto front, wall time against {} (no other run is both faster and more "
+      "accurate):",
+      error_name);
   for (const std::size_t i : study::pareto_front(points)) {
-    spdlog::info("  run {:>3}  {:9.3f} s  fan L1 {:.4g}  ({})", i + 1, points[i].cost,
+    spdlog::info("  run {:>3}  {:9.3f} s  {} {:.4g}  ({})", i + 1, points[i].cost, error_name,
                  points[i].error, study::describe(runs[i].knobs));
   }
   if (broke_down + timed_out + failed > 0) {
@@ -439,8 +563,27 @@ void stop_overdue(std::vector<Child>& going, std::optional<double> run_time_limi
 
 // Runs every planned run, `jobs` at once, each child with `threads` OpenMP threads; rows go
 // into the table as they finish.
+// Measures a finished run's result against the reference; a result that cannot be read makes
+// the run's row a failure that says so.
+void measure_row(Row& row, const PlannedRun& run, const ReferenceMaps& reference,
+                 double wet_depth_m) {
+  try {
+    row.map = measure_result(run.result, reference, wet_depth_m);
+  } catch (const std::exception& e) {
+    row.record.status = "failed";
+    row.record.message =
+        std::string("the run finished, but its result could not be measured: ") + e.what();
+  }
+}
+
+// A map reference read before the runs, or none yet (an analytic one, or the finest run).
+struct Measuring {
+  std::optional<ReferenceMaps> reference;
+  double wet_depth_m = 0.0;
+};
+
 void run_all(const std::vector<PlannedRun>& runs, const study::Study& study, int jobs, int threads,
-             StudyTable& table, SweepProgress& progress) {
+             const Measuring& measuring, StudyTable& table, SweepProgress& progress) {
   std::size_t going_count = 0;
   PoolCalls calls;
   calls.start = [&](std::size_t run) {
@@ -456,11 +599,56 @@ void run_all(const std::vector<PlannedRun>& runs, const study::Study& study, int
                     const std::string& output) {
     --going_count;
     Row row = collect(child, status, usage, output, study.run_time_limit_s);
+    if (measuring.reference && row.record.status == "ok") {
+      measure_row(row, runs[child.task], *measuring.reference, measuring.wet_depth_m);
+    }
     const std::string line = finished_line(child.task, runs.size(), runs[child.task], row);
     table.add(child.task, std::move(row));
     progress.finished(child.task, line, going_count);
   };
   run_pool(start_order(runs), jobs, calls);
+}
+
+// The finest run that finished, as the reference of all: its row's measures are its own (0).
+void measure_against_finest(const std::vector<PlannedRun>& runs, double wet_depth_m,
+                            StudyTable& table) {
+  std::optional<std::size_t> finest;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (table.row(i)->record.status != "ok") continue;
+    const double spacing = study::finest_spacing(runs[i].scene);
+    if (!finest || spacing < study::finest_spacing(runs[*finest].scene)) finest = i;
+  }
+  if (!finest) {
+    spdlog::warn("no run finished, so there is no finest run to measure the others against");
+    return;
+  }
+  ReferenceMaps reference;
+  try {
+    reference = reference_from_result(runs[*finest].result);
+  } catch (const std::exception& e) {
+    spdlog::warn("the finest run's result cannot be read, so no run is measured: {}", e.what());
+    return;
+  }
+  spdlog::info("the reference is run {} ({}), the finest that finished", *finest + 1,
+               study::describe(runs[*finest].knobs));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (table.row(i)->record.status != "ok") continue;
+    Row row = *table.row(i);
+    measure_row(row, runs[i], reference, wet_depth_m);
+    table.add(i, std::move(row));
+  }
+}
+
+// The columns of a study's table, and the gauges a map reference compares.
+TableLayout layout_for(const study::Study& study, const scenario::Scenario& base) {
+  TableLayout layout;
+  layout.maps = measured_by_maps(study);
+  if (const auto* map = std::get_if<study::MapReference>(&study.reference)) {
+    for (const auto& c : map->gauge_columns) layout.gauges.push_back(c.gauge);
+  } else if (std::holds_alternative<study::FinestRunReference>(study.reference)) {
+    for (const auto& g : base.output.gauges) layout.gauges.push_back(g.name);
+  }
+  return layout;
 }
 
 }  // namespace
@@ -474,27 +662,43 @@ void study(const Options& options, const std::string& /*command_line*/) {
                                   "a shallow-water scene (the study measures shallow-water runs)",
                                   "study");
   }
-  const std::vector<PlannedRun> runs = plan_runs(definition, base);
+  const std::filesystem::path output =
+      options.output ? output_option(*options.output) : definition.output;
+  check_output_target(output);
+  const std::vector<PlannedRun> runs = plan_runs(definition, base, output);
+  Measuring measuring;
+  measuring.wet_depth_m = definition.wet_depth_m.value_or(base.output.wet_depth_m);
+  if (const auto* map = std::get_if<study::MapReference>(&definition.reference)) {
+    measuring.reference = read_reference_maps(*map, base);
+  }
+  if (measured_by_maps(definition)) {
+    std::error_code ec;
+    std::filesystem::create_directories(runs_folder(output), ec);
+    if (ec) {
+      throw OutputError("cannot create the folder " + runs_folder(output).string() +
+                        " for the runs' files: " + ec.message());
+    }
+  }
   const int cores = usable_cores();
   const int jobs = std::clamp(options.jobs > 0 ? options.jobs : definition.jobs.value_or(cores), 1,
                               static_cast<int>(runs.size()));
   const int threads = options.threads > 0 ? options.threads : std::max(1, cores / jobs);
-  const std::filesystem::path output =
-      options.output ? output_option(*options.output) : definition.output;
-  check_output_target(output);
 
   spdlog::info("study '{}': {} runs of scene '{}', {} at once, {} each, end time {} s",
                options.scenario.string(), runs.size(), base.name, jobs, threads_text(threads),
                base.end_time_s);
-  StudyTable table(output, runs);
+  StudyTable table(output, runs, layout_for(definition, base));
   std::vector<double> costs;
   for (const auto& run : runs) costs.push_back(run.expected_cost);
   SweepProgress progress(costs, options.verbosity != Verbosity::quiet);
   const auto start = Clock::now();
-  run_all(runs, definition, jobs, threads, table, progress);
+  run_all(runs, definition, jobs, threads, measuring, table, progress);
   progress.finish();
+  if (std::holds_alternative<study::FinestRunReference>(definition.reference)) {
+    measure_against_finest(runs, measuring.wet_depth_m, table);
+  }
   table.finish();
-  log_summary(table, runs, seconds_since(start), jobs, threads);
+  log_summary(table, runs, seconds_since(start), jobs, threads, measured_by_maps(definition));
 }
 
 }  // namespace swemps::cli

@@ -520,6 +520,9 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   RunReport report;
   report.steps = sim.steps();
   report.fluid_particles = initial_particles;
+  report.final_fluid_particles = sim.particles().fluid_count();
+  report.particle_steps = sim.particle_steps();
+  report.relative_volume_change = sim.relative_volume_change();
   report.wall_s = wall_s;
   report.output = output.path();
   return report;

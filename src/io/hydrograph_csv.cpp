@@ -11,18 +11,16 @@
 #include <string>
 #include <string_view>
 
+#include "csv_text.hpp"
+
 namespace swemps::io {
+
+using csv::split_commas;
+using csv::trim;
 
 namespace {
 
 enum class Column { time, discharge };
-
-std::string_view trim(std::string_view s) {
-  const auto is_space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
-  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
-  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
-  return s;
-}
 
 std::string lower_without_spaces(std::string_view s) {
   std::string out;
@@ -32,17 +30,6 @@ std::string lower_without_spaces(std::string_view s) {
     }
   }
   return out;
-}
-
-std::vector<std::string_view> split_commas(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
-  }
 }
 
 // Which column a header name names, or nullopt with `why` set.

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "json_reading.hpp"
+#include "swemps/io/raster_reader.hpp"
 #include "swemps/scenario/study_file.hpp"
 
 namespace swemps::scenario {
@@ -35,14 +36,81 @@ study::RitterReference read_ritter(const json& v, const std::string& path) {
   return r;
 }
 
-study::RitterReference read_reference(const Object& root) {
-  const std::string expected = "an object naming the analytic solution: {\"ritter\": {...}}";
+// A raster the study names: a file, or a GDAL dataset name wrapping one
+// (NETCDF:"run.nc":max_depth), its file taken relative to the study file's folder.
+std::string raster_name(const Object& o, std::string_view key, const std::string& what,
+                        const std::filesystem::path& base_dir) {
+  const json* v = o.find(key);
+  const std::string expected =
+      "a path to " + what + " (relative to the study file's folder), or a GDAL dataset name";
+  if (v == nullptr) throw ScenarioError(o.path(key), kMissing, expected);
+  if (!v->is_string() || v->get_ref<const std::string&>().empty()) {
+    throw ScenarioError(o.path(key), describe(*v), expected);
+  }
+  const std::string text = v->get<std::string>();
+  const auto resolve = [&](const std::string& name) {
+    std::filesystem::path p(name);
+    if (p.is_relative()) p = base_dir / p;
+    return std::filesystem::absolute(p).lexically_normal().string();
+  };
+  if (const auto wrapped = io::split_dataset_name(text)) {
+    return wrapped->driver + ":\"" + resolve(wrapped->file) + "\"" + wrapped->rest;
+  }
+  return resolve(text);
+}
+
+// {"table": "gauges.csv", "columns": {"<gauge>": "<column>", ...}}
+void read_gauge_reference(const json& v, const std::string& path,
+                          const std::filesystem::path& base_dir, study::MapReference& r) {
+  const std::string expected =
+      "an object {\"table\": CSV file, \"columns\": {gauge name: column name, ...}}";
+  const Object o(v, path, {"table", "columns"}, expected);
+  r.gauge_table = file_path(o, "table", "a CSV table of depths at the gauges", base_dir);
+  const json* columns = o.find("columns");
+  if (columns == nullptr) throw ScenarioError(o.path("columns"), kMissing, expected);
+  const std::string columns_expected =
+      "a non-empty object naming, for each gauge compared, the table's column of its depth";
+  if (!columns->is_object() || columns->empty()) {
+    throw ScenarioError(o.path("columns"), describe(*columns), columns_expected);
+  }
+  for (auto it = columns->begin(); it != columns->end(); ++it) {
+    const std::string at = member_path(o.path("columns"), it.key());
+    if (!it->is_string() || it->get_ref<const std::string&>().empty()) {
+      throw ScenarioError(at, describe(*it), "the name of a column of the table");
+    }
+    r.gauge_columns.push_back({it.key(), it->get<std::string>()});
+  }
+}
+
+study::Reference read_reference(const Object& root, const std::filesystem::path& base_dir) {
+  const std::string expected =
+      "an object naming the reference: {\"ritter\": {...}}, {\"max_depth\": raster, ...} or "
+      "{\"finest_run\": {}}";
   const json* v = root.find("reference");
   if (v == nullptr) throw ScenarioError(root.path("reference"), kMissing, expected);
-  const Object o(*v, root.path("reference"), {"ritter"}, expected);
-  const json* ritter = o.find("ritter");
-  if (ritter == nullptr) throw ScenarioError(o.path("ritter"), kMissing, expected);
-  return read_ritter(*ritter, o.path("ritter"));
+  const Object o(*v, root.path("reference"), {"ritter", "max_depth", "gauges", "finest_run"},
+                 expected);
+  const int kinds = (o.find("ritter") != nullptr) + (o.find("max_depth") != nullptr) +
+                    (o.find("finest_run") != nullptr);
+  if (kinds != 1) {
+    throw ScenarioError(root.path("reference"),
+                        kinds == 0 ? "no reference" : "more than one kind of reference", expected);
+  }
+  if (o.find("gauges") != nullptr && o.find("max_depth") == nullptr) {
+    throw ScenarioError(o.path("gauges"), "gauges without a map",
+                        "gauge series only beside \"max_depth\"");
+  }
+  if (const json* ritter = o.find("ritter")) return read_ritter(*ritter, o.path("ritter"));
+  if (const json* finest = o.find("finest_run")) {
+    Object(*finest, o.path("finest_run"), {}, "{} (the finest run is the reference)");
+    return study::FinestRunReference{};
+  }
+  study::MapReference map;
+  map.max_depth = raster_name(o, "max_depth", "a raster of the maximum depth (metres)", base_dir);
+  if (const json* gauges = o.find("gauges")) {
+    read_gauge_reference(*gauges, o.path("gauges"), base_dir, map);
+  }
+  return map;
 }
 
 // o[key], an optional non-empty array of values, each read by `read(value, path)`. A value
@@ -153,17 +221,31 @@ std::optional<int> read_jobs(const Object& o) {
 study::Study read_study(const json& root_value, const std::filesystem::path& base_dir,
                         const std::filesystem::path& default_output) {
   const Object o(root_value, "",
-                 {"description", "scene", "reference", "sweep", "profile_spacing_ratio", "jobs",
-                  "run_time_limit", "output"},
+                 {"description", "scene", "reference", "sweep", "profile_spacing_ratio",
+                  "wet_depth", "jobs", "run_time_limit", "output"},
                  "a JSON object describing the study");
   optional_string(o, "description", "a string");  // free text, checked only for its type
   study::Study s;
   s.scene = file_path(o, "scene", "the scenario file every run starts from", base_dir);
-  s.reference = read_reference(o);
+  s.reference = read_reference(o, base_dir);
   s.sweep = read_sweep(o);
+  const bool analytic = std::holds_alternative<study::RitterReference>(s.reference);
+  // Each key belongs to one kind of reference; given to the other it would silently do nothing.
+  if (!analytic && o.find("profile_spacing_ratio") != nullptr) {
+    throw ScenarioError(o.path("profile_spacing_ratio"), describe(*o.find("profile_spacing_ratio")),
+                        "no profile: maps are compared on the scene's output cells");
+  }
+  if (analytic && o.find("wet_depth") != nullptr) {
+    throw ScenarioError(o.path("wet_depth"), describe(*o.find("wet_depth")),
+                        "no wet depth: an analytic reference is compared on a depth profile");
+  }
   // Below 1 the profile would be coarser than the particles and hide their error.
   s.profile_spacing_ratio = bounded(o, "profile_spacing_ratio", 1.0, false, 64.0,
                                     "profile cells per particle spacing", s.profile_spacing_ratio);
+  if (o.find("wet_depth") != nullptr) {
+    s.wet_depth_m =
+        bounded(o, "wet_depth", 0.0, true, 100.0, "metres: a cell is wet when deeper", 0.0);
+  }
   s.jobs = read_jobs(o);
   if (o.find("run_time_limit") != nullptr) {
     s.run_time_limit_s = bounded(o, "run_time_limit", 0.0, true, 1e7,

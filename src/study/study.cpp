@@ -90,6 +90,7 @@ std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme) {
 void apply(const RunKnobs& knobs, scenario::Scenario& scene) {
   if (knobs.spacing_m) {
     for (auto& body : scene.water) body.spacing_m = *knobs.spacing_m;
+    for (auto& inflow : scene.inflows) inflow.spacing_m = *knobs.spacing_m;
   }
   if (knobs.splitting) {
     if (const auto threshold = knobs.splitting->area_ratio_threshold) {
@@ -111,11 +112,13 @@ void apply(const RunKnobs& knobs, scenario::Scenario& scene) {
 }
 
 double finest_spacing(const scenario::Scenario& scene) {
-  if (scene.water.empty()) return 0.0;
-  const auto finest =
-      std::min_element(scene.water.begin(), scene.water.end(),
-                       [](const auto& a, const auto& b) { return a.spacing_m < b.spacing_m; });
-  return finest->spacing_m;
+  double finest = 0.0;
+  const auto take = [&](double spacing) {
+    if (spacing > 0.0 && (finest == 0.0 || spacing < finest)) finest = spacing;
+  };
+  for (const auto& body : scene.water) take(body.spacing_m);
+  for (const auto& inflow : scene.inflows) take(inflow.spacing_m);
+  return finest;
 }
 
 RunMeasures measure(const swe::Simulation& simulation, const scenario::Scenario& scene,

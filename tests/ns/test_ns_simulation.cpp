@@ -242,11 +242,20 @@ TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 2D, 10
   CHECK(fastest < 0.01);
 }
 
-TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 10 s",
+// 10 x 10 x 20 particles: l0/H = 0.05 as in 2D. In 3D the kernel's support is 1.8 l0: at
+// 2.1 l0 a mode grows in the interior after about a second and by 10 s particles run at
+// sqrt(g H) (docs/ns-dam-break.md, "Water at rest"); in 2D it is 1.8 l0 that breaks down.
+// The suite runs the first 2 s, past the time that mode takes to appear; the whole 10 s is a
+// long study (-DSWEMPS_LONG_TESTS=ON), six and a half minutes on its own.
+TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 2 s",
           "[ns][physics]") {
-  // 10 x 10 x 20 particles: l0/H = 0.05 as in 2D. In 3D the kernel's support is 1.8 l0: at
-  // 2.1 l0 a mode grows in the interior after about a second and by 10 s particles run at
-  // sqrt(g H) (docs/ns-dam-break.md, "Water at rest"); in 2D it is 1.8 l0 that breaks down.
+  const auto [worst, fastest] = rest_in_tank<3>({0.1, 0.1, 0.3}, 0.2, 2.0, 1.8);
+  CHECK(worst < 0.02);
+  CHECK(fastest < 0.01);
+}
+
+TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 10 s",
+          "[ns][physics][long]") {
   const auto [worst, fastest] = rest_in_tank<3>({0.1, 0.1, 0.3}, 0.2, 10.0, 1.8);
   CHECK(worst < 0.02);
   CHECK(fastest < 0.01);

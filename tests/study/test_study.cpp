@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/csv_table.hpp"
 #include "../support/run_command.hpp"
 #include "../support/temp_dir.hpp"
 #include "swemps/scenario/scenario.hpp"
@@ -63,53 +64,12 @@ void check_refused(const std::vector<Refusal>& cases) {
   }
 }
 
+using swemps::testing::CsvRow;
+using swemps::testing::number;
+using swemps::testing::read_csv;
 using Result = swemps::testing::CommandResult;
 
 Result run(const std::string& command) { return swemps::testing::run_command(command); }
-
-// One CSV line split into fields; quoted fields may hold commas and doubled quotes.
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields{""};
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-      fields.back() += '"';
-      ++i;
-    } else if (c == '"') {
-      quoted = !quoted;
-    } else if (c == ',' && !quoted) {
-      fields.emplace_back();
-    } else {
-      fields.back() += c;
-    }
-  }
-  return fields;
-}
-
-using CsvRow = std::map<std::string, std::string>;
-
-std::vector<CsvRow> read_csv(const fs::path& path) {
-  std::ifstream in(path);
-  std::string line;
-  REQUIRE(std::getline(in, line));
-  const auto header = csv_fields(line);
-  std::vector<CsvRow> rows;
-  while (std::getline(in, line)) {
-    const auto fields = csv_fields(line);
-    REQUIRE(fields.size() == header.size());
-    CsvRow row;
-    for (std::size_t k = 0; k < header.size(); ++k) row[header[k]] = fields[k];
-    rows.push_back(row);
-  }
-  return rows;
-}
-
-double number(const CsvRow& row, const std::string& column) {
-  INFO("column " << column);
-  REQUIRE(row.count(column) == 1);
-  return std::stod(row.at(column));
-}
 
 }  // namespace
 
@@ -273,9 +233,9 @@ TEST_CASE("a study file arrives field by field, paths taken from its folder", "[
   })");
   CHECK(s.scene == fs::path("/studies/case/scenario.json"));
   CHECK(s.output == fs::path("/studies/out/table.csv"));
-  CHECK(s.reference.dam_x_m == 25.0);
-  CHECK(s.reference.initial_depth_m == 1.0);
-  CHECK(s.reference.reservoir_start_x_m == -1.0);
+  CHECK(std::get<swemps::study::RitterReference>(s.reference).dam_x_m == 25.0);
+  CHECK(std::get<swemps::study::RitterReference>(s.reference).initial_depth_m == 1.0);
+  CHECK(std::get<swemps::study::RitterReference>(s.reference).reservoir_start_x_m == -1.0);
   CHECK(s.sweep.spacing_m == std::vector<double>{0.2, 0.1});
   REQUIRE(s.sweep.splitting.size() == 2);
   CHECK_FALSE(s.sweep.splitting[0].area_ratio_threshold.has_value());
@@ -301,7 +261,7 @@ TEST_CASE("a study file arrives field by field, paths taken from its folder", "[
   CHECK(defaults.output == fs::path("/studies/default.csv"));
   CHECK(defaults.profile_spacing_ratio == 4.0);
   CHECK_FALSE(defaults.jobs.has_value());
-  CHECK(defaults.reference.reservoir_start_x_m == 0.0);
+  CHECK(std::get<swemps::study::RitterReference>(defaults.reference).reservoir_start_x_m == 0.0);
 }
 
 TEST_CASE("broken study files are refused at the JSON path of the problem", "[study]") {

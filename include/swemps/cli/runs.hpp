@@ -17,6 +17,10 @@ namespace swemps::cli {
 struct RunReport {
   std::size_t steps = 0;
   std::size_t fluid_particles = 0;  // at the start
+  // Shallow water: fluid particles at the end, the sum over steps of the particles stepped,
+  // and the volume balance's relative change (the run summary's).
+  std::size_t final_fluid_particles = 0, particle_steps = 0;
+  double relative_volume_change = 0.0;
   // Navier-Stokes: the tank's wall and dummy particles. Shallow water has none: its walls are
   // mirrored ghosts made anew each step.
   std::size_t wall_particles = 0, dummy_particles = 0;

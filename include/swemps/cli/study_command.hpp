@@ -3,7 +3,9 @@
 // study file lists runs in its own child process, so that each run's peak memory is its own
 // and a run that crashes or breaks down costs only its row. A CSV table gets one row per run,
 // in the order of the sweep, and the closing summary lists the Pareto front of wall time
-// against the fan's L1 error.
+// against the error: the fan's L1 error against Ritter's solution, or the maximum depth's mean
+// absolute difference against a reference map (each run then writes its own result file,
+// which the parent measures: cli/study_reference.hpp).
 
 #include <string>
 

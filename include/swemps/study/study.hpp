@@ -1,15 +1,17 @@
 #pragma once
 // An accuracy-cost study: one scene run many times with its numerical knobs (particle spacing,
 // splitting, scheme and its parameters, Courant number) set to every combination of
-// the values listed, each run's depth measured against an analytic solution at the scene's
-// end time. What runs the combinations (processes, timing, the table) is the study command;
-// this module says what the runs are and what each one measures. No file formats here: the
+// the values listed, each run measured against a reference: an analytic solution at the
+// scene's end time, a reference map of the maximum depth (a converged grid model's), or the
+// study's own finest run. What runs the combinations (processes, timing, the table) is the
+// study command; this module says what the runs are and what each one measures. No file formats here: the
 // study file is read by scenario::load_study.
 
 #include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "swemps/scenario/scenario.hpp"
@@ -61,9 +63,33 @@ struct RitterReference {
   double reservoir_start_x_m = 0.0;
 };
 
+// Which column of a gauge table holds which of the scene's gauges.
+struct GaugeColumn {
+  std::string gauge;   // the scene's gauge name
+  std::string column;  // the table's column of its depth (m)
+};
+
+// A map of the whole-run maximum depth from a model the study trusts (a grid model refined
+// until it converged, a surveyed flood), on any grid: each run's map is compared with it
+// averaged over the run's output cells (map_comparison.hpp). Optionally the depth series at
+// the scene's gauges, for the peaks.
+struct MapReference {
+  std::string max_depth;                // a raster GDAL opens: a file or a dataset name; m
+  std::filesystem::path gauge_table;    // empty: no gauge series. CSV: time_s and depth columns
+  std::vector<GaugeColumn> gauge_columns;
+};
+
+// The run of the finest spacing as the reference of the others (the first such run when
+// several share it): what refining further would change, when nothing better is at hand.
+struct FinestRunReference {};
+
+using Reference = std::variant<RitterReference, MapReference, FinestRunReference>;
+
 struct Study {
   std::filesystem::path scene;  // the scenario file every run starts from (absolute)
-  RitterReference reference;
+  Reference reference;
+  // Map references: a cell is wet deeper than this (m); absent: the scene's output wet depth.
+  std::optional<double> wet_depth_m;
   Sweep sweep;
   // The profile the errors are measured on has cells of side spacing / this ratio.
   double profile_spacing_ratio = 4.0;
@@ -82,11 +108,13 @@ struct Study {
 // four runs, not eight. Throws std::invalid_argument when a swept knob applies to no run.
 std::vector<RunKnobs> expand(const Sweep& sweep, swe::SchemeKind scene_scheme);
 
-// Sets the knobs that are given on a loaded scene. Splitting on keeps the scene's other
+// Sets the knobs that are given on a loaded scene; the spacing is that of every water body
+// and every inflow. Splitting on keeps the scene's other
 // splitting settings (or the defaults when it has none) and sets the threshold.
 void apply(const RunKnobs& knobs, scenario::Scenario& scene);
 
-// The particle spacing a run of the scene has: the finest of its water bodies (0 without any).
+// The particle spacing a run of the scene has: the finest of its water bodies and inflows (0
+// without any).
 double finest_spacing(const scenario::Scenario& scene);
 
 // What a finished run measures, besides its cost.
