@@ -102,9 +102,10 @@ class SweOutput {
     sim.refresh();
     std::vector<io::GaugeSample> at_gauges;
     for (std::size_t k = 0; k < gauges_.size(); ++k) {
-      // The water surface around the gauge less the bed at its point (maps::gauge_reader).
+      // The level of the water in the cell around the gauge less the bed at its point
+      // (maps::gauge_reader, CellAverages::level).
       const auto around = gauge_cells_[k].fields(sim.particles(), sim.kernel());
-      const double surface = around.surface.front();
+      const double surface = gauge_cells_[k].level(0, around.depth.front());
       const double depth = surface > gauge_bed_m_[k] ? surface - gauge_bed_m_[k] : 0.0;
       const bool wet = depth > file_.wet_depth_m();
       at_gauges.push_back({depth, wet ? around.u.front() : kNaN, wet ? around.v.front() : kNaN,

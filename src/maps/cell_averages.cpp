@@ -71,6 +71,35 @@ double CellAverages::sub_bed(long si, long sk) const {
                          sy0_ + static_cast<double>(sk) * sdy_);
 }
 
+double CellAverages::level(std::size_t cell, double depth_m) const {
+  if (!(depth_m > 0.0) || cell >= grid_.nx * grid_.ny) return kNaN;
+  const long sub = static_cast<long>(sub_);
+  const long ci = static_cast<long>(cell % grid_.nx), ck = static_cast<long>(cell / grid_.nx);
+  std::vector<double> ground;
+  for (long sk = ck * sub; sk < (ck + 1) * sub; ++sk) {
+    const double y = sy0_ + static_cast<double>(sk) * sdy_;
+    if (y < domain_.y_min || y > domain_.y_max) continue;
+    for (long si = ci * sub; si < (ci + 1) * sub; ++si) {
+      const double x = sx0_ + static_cast<double>(si) * sdx_;
+      if (x < domain_.x_min || x > domain_.x_max) continue;
+      const double b = sub_bed(si, sk);
+      if (!std::isnan(b)) ground.push_back(b);
+    }
+  }
+  if (ground.empty()) return kNaN;
+  std::sort(ground.begin(), ground.end());
+  // With the k lowest sub-points wet, k eta - (their ground) = the volume over a sub-point's
+  // area; the level is the first such eta that stays at or below the next sub-point's ground.
+  const double volume_over_area = depth_m * grid_.dx * grid_.dy / (sdx_ * sdy_);
+  double ground_sum = 0.0;
+  for (std::size_t k = 1; k <= ground.size(); ++k) {
+    ground_sum += ground[k - 1];
+    const double eta = (volume_over_area + ground_sum) / static_cast<double>(k);
+    if (k == ground.size() || eta <= ground[k]) return eta;
+  }
+  return kNaN;  // not reached
+}
+
 template <class Kernel>
 void CellAverages::shares_of(const particles::SweParticles& p, std::size_t j,
                              std::span<const std::uint32_t> ghosts, const Kernel& kernel,

@@ -80,7 +80,8 @@ maps::CellAverages map_reader(const Scenario& scene, const Terrain& terrain,
 // How a gauge at `point` reads the particles: the cell averages of one cell centred on it, as
 // wide as a cell of `grid` but at most kGaugeSpacings of the finest particle spacing, so that
 // the water surface it reads is an average over several particles, as a grid model's gauge
-// reads its cell. The depth at the gauge is that surface less the bed at the point.
+// reads its cell. The depth at the gauge is the level of the water in that cell
+// (CellAverages::level) less the bed at the point.
 maps::CellAverages gauge_reader(const Scenario& scene, const Terrain& terrain,
                                 const swe::RegularGrid& grid, const Point& point);
 inline constexpr double kGaugeSpacings = 4.0;
