@@ -468,8 +468,9 @@ Terrain read_terrain(const Scenario& scene) {
 }
 
 // The lattice the balanced bed term sees the bed on: the finest water body's seeding lattice,
-// or without water bodies one of the finest inflow's spacing from the domain's corner. It
-// reaches past the domain by the widest support a particle can take (h = kappa sqrt(cap A_0)).
+// or without water bodies one of the finest inflow's spacing from the domain's corner (with
+// neither, a hundredth of the domain's shorter side). It reaches past the domain by the
+// widest support a particle can take (h = kappa sqrt(cap A_0)).
 std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
                                                          const Terrain& terrain,
                                                          const Seeded& water) {
@@ -479,8 +480,14 @@ std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
   if (seeded) {
     geometry = *seeded;
   } else {
+    // Finer than the particles it serves would only cost time: each particle weighs every
+    // node under its kernel, so a lattice at a hundredth of a narrow domain (0.6 m under
+    // 4 m particles) made the bed term 125 s of a 143 s run (docs/verification.md).
     double spacing = std::min(d.x_max - d.x_min, d.y_max - d.y_min) / 100.0;
-    for (const auto& inflow : scene.inflows) spacing = std::min(spacing, inflow.spacing_m);
+    if (!scene.inflows.empty()) {
+      spacing = scene.inflows.front().spacing_m;
+      for (const auto& inflow : scene.inflows) spacing = std::min(spacing, inflow.spacing_m);
+    }
     geometry = {d.x_min, d.y_min, spacing, spacing, spacing * spacing};
   }
   double widest_cell = geometry.node_area_m2;

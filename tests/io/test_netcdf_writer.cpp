@@ -849,10 +849,10 @@ TEST_CASE("NetcdfWriter laid out with particles refuses maps without them", "[io
   NetcdfWriter w(file, layout_of(grid, true), metadata());
   CHECK_THROWS_AS(w.write(0.0, make_maps(grid.nx * grid.ny, 0.0).fields()), std::logic_error);
   CHECK(w.records() == 0);
-  // The default depth description is the shallow-water summation's.
+  // The default depth description is the shallow-water maps': cell averages.
   w.write(0.0, make_particles(1, 0), make_maps(grid.nx * grid.ny, 0.0).fields());
   w.finish();
-  CHECK_THAT(Reader(file).text("depth", "long_name"), Catch::Contains("eq 7 summation"));
+  CHECK_THAT(Reader(file).text("depth", "long_name"), Catch::Contains("cell average"));
 }
 
 TEST_CASE("NetcdfWriter destroyed without finish leaves only the partial file", "[io][netcdf]") {

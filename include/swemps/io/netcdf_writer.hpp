@@ -62,7 +62,8 @@ struct Layout {
   std::vector<Gauge> gauges;  // may be empty: then the file has no gauge variables
   // The depth map's long_name: how the depth was measured (the shallow-water summation, or
   // the Navier-Stokes column of particles).
-  std::string depth_long_name = "water depth (eq 7 summation of the particles at cell centres)";
+  std::string depth_long_name =
+      "water depth: the particles' water in the cell over its area (cell average)";
 };
 
 // Gridded fields of one output time: ny * nx values each, row-major with x fastest (index
