@@ -10,8 +10,9 @@ arm then holding the water that level puts over its bed (298 m³ between 5 m and
 the basin's edge, for a basin level near 0.593 m). Slip walls close the domain; Manning's n is
 0.024 (the valley flood's 0.035 at a tenth of its size). The case reproduces, in miniature, the
 upper basin's narrow southern arm of cases/valley-flood (docs/valley-flood.md, "Where the
-middle reach's shortfall sits"): measured, the arm comes to rest 0.085 m below the basin at
-3 m spacing (19 % of its water missing) and 0.033 m below at 1.5 m (7 %).
+middle reach's shortfall sits"): measured, the arm comes to rest with its edges bare, holding
+the water of a level 0.085 m below the basin's at 3 m spacing (19 % of its water missing) and
+0.033 m below at 1.5 m (7 %).
 
 Writes bed.asc (an ESRI ASCII grid of 0.5 m cells, local metres) and arm-<spacing>.json in the
 given folder; run the scene with swe-mps run and read the particles it writes every 30 s.
