@@ -485,8 +485,10 @@ std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
     // 4 m particles) made the bed term 125 s of a 143 s run (docs/verification.md).
     double spacing = std::min(d.x_max - d.x_min, d.y_max - d.y_min) / 100.0;
     if (!scene.inflows.empty()) {
-      spacing = scene.inflows.front().spacing_m;
-      for (const auto& inflow : scene.inflows) spacing = std::min(spacing, inflow.spacing_m);
+      spacing = std::min_element(scene.inflows.begin(), scene.inflows.end(),
+                                 [](const auto& a, const auto& b) {
+                                   return a.spacing_m < b.spacing_m;
+                                 })->spacing_m;
     }
     geometry = {d.x_min, d.y_min, spacing, spacing, spacing * spacing};
   }

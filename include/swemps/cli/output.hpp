@@ -68,8 +68,8 @@ struct GriddedState {
 class MapOutput {
  public:
   // `particles`: whether the SWE particles are written with the maps. `depth_long_name` says
-  // how depth was measured (empty: the shallow-water summation); `title_note` is added to the
-  // file's title (the model).
+  // how depth was measured (empty: the shallow-water cell averages); `title_note` is added to
+  // the file's title (the model).
   // With `resume`, goes on writing <output>.partial after that position (a run restarted from
   // a checkpoint); throws io::CheckpointError if that file cannot be opened or does not match
   // the checkpoint: the checkpoint cannot be used without the maps written before it.

@@ -60,8 +60,8 @@ struct Layout {
   Grid grid;
   bool particles = true;      // write the particles at every output time
   std::vector<Gauge> gauges;  // may be empty: then the file has no gauge variables
-  // The depth map's long_name: how the depth was measured (the shallow-water summation, or
-  // the Navier-Stokes column of particles).
+  // The depth map's long_name: how the depth was measured (the shallow-water cell averages,
+  // or the Navier-Stokes column of particles).
   std::string depth_long_name =
       "water depth: the particles' water in the cell over its area (cell average)";
 };
