@@ -20,9 +20,9 @@ given folder; run the scene with swe-mps run and read the particles it writes ev
     /usr/bin/python3 tools/make_dead_end_arm.py /tmp/arm --spacing 3
 """
 
-import argparse
-import json
 import os
+
+from scene_grids import boxed_scene, scene_arguments, write_ascii_grid, write_scene
 
 X_MIN, X_MAX, Y_MIN, Y_MAX = 0.0, 200.0, -60.0, 200.0
 CELL = 0.5
@@ -36,44 +36,21 @@ def bed(x, y):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("folder", help="where to write bed.asc and the scene")
-    ap.add_argument("--spacing", type=float, default=3.0, help="particle spacing, m")
-    ap.add_argument("--end-time", type=float, default=900.0, help="simulated time, s")
-    args = ap.parse_args()
-    os.makedirs(args.folder, exist_ok=True)
-    columns = int((X_MAX - X_MIN) / CELL)
-    rows = int((Y_MAX - Y_MIN) / CELL)
-    with open(os.path.join(args.folder, "bed.asc"), "w") as out:
-        out.write(f"ncols {columns}\nnrows {rows}\nxllcorner {X_MIN}\nyllcorner {Y_MIN}\n"
-                  f"cellsize {CELL}\nNODATA_value -9999\n")
-        for row in range(rows):
-            y = Y_MAX - (row + 0.5) * CELL
-            out.write(" ".join(f"{bed(X_MIN + (c + 0.5) * CELL, y):.4f}"
-                               for c in range(columns)) + "\n")
+    args = scene_arguments(__doc__.splitlines()[0], 3.0, 900.0)
+    write_ascii_grid(os.path.join(args.folder, "bed.asc"), X_MIN, Y_MIN,
+                     int((X_MAX - X_MIN) / CELL), int((Y_MAX - Y_MIN) / CELL), CELL, bed)
     name = f"arm-{args.spacing:g}"
-    scene = {
-        "name": name,
-        "description": "a basin filled to 0.6 m opening into a dry dead-end arm: does the "
-                       "water that runs in come to rest at the basin's level?",
-        "end_time": args.end_time,
-        "domain": {"x_min": X_MIN, "x_max": X_MAX, "y_min": Y_MIN, "y_max": Y_MAX},
-        "bed": {"raster": "bed.asc"},
-        "friction": {"manning_n": 0.024},
-        "splitting": {},
-        "merging": {},
-        "walls": [{"polyline": [[X_MIN, Y_MIN], [X_MAX, Y_MIN], [X_MAX, Y_MAX],
-                                [X_MIN, Y_MAX], [X_MIN, Y_MIN]], "condition": "slip"}],
+    description = ("a basin filled to 0.6 m opening into a dry dead-end arm: does the water "
+                   "that runs in come to rest at the basin's level?")
+    scene = boxed_scene(name, description, args.end_time, (X_MIN, X_MAX, Y_MIN, Y_MAX), 0.024)
+    scene.update({
         "water": [{"fill": {"polygon": [[X_MIN, 0], [X_MAX, 0], [X_MAX, Y_MAX], [X_MIN, Y_MAX]]},
                    "surface_elevation": LEVEL, "spacing": args.spacing,
                    "volumes": "geometric"}],
         "output": {"path": f"{name}.nc", "interval": 30, "particles": True,
                    "grid": {"spacing": 2 * args.spacing}},
-    }
-    path = os.path.join(args.folder, f"{name}.json")
-    with open(path, "w") as out:
-        json.dump(scene, out, indent=1)
-    print(f"wrote {path} and bed.asc")
+    })
+    write_scene(args.folder, scene)
 
 
 if __name__ == "__main__":
