@@ -283,7 +283,8 @@ enum class WetSetFit { exact, other_set, undetermined };
 
 WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const NodeBuffer& b,
                            const std::vector<char>* wet, double smallest_eigenvalue,
-                           std::array<double, 2>& slope, std::vector<char>* wetted = nullptr) {
+                           std::array<double, 2>& slope, std::vector<char>* wetted = nullptr,
+                           double* level_at_particle = nullptr) {
   const std::size_t count = b.z.size();
   double w = 0.0, wz = 0.0, mx = 0.0, my = 0.0, gx = 0.0, gy = 0.0, zx = 0.0, zy = 0.0;
   double jxx = 0.0, jxy = 0.0, jyx = 0.0, jyy = 0.0;
@@ -317,6 +318,7 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
   const double level = held - (mx * sx + my * sy) / w;
   if (!std::isfinite(sx) || !std::isfinite(sy)) return WetSetFit::undetermined;
   slope = {sx, sy};
+  if (level_at_particle) *level_at_particle = level;
   if (wetted) wetted->resize(count);
   bool same = true;
   for (std::size_t k = 0; k < count; ++k) {
@@ -341,10 +343,10 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
 // in surface_slope), Newton's steps over the first hour fell from 11.4 to 1.05 million and the
 // whole run from 144 s to 116 s on one thread (docs/method.md).
 bool wet_set_slope(double depth, double grad_h_x, double grad_h_y, NodeBuffer& b,
-                   std::array<double, 2>& slope) {
+                   std::array<double, 2>& slope, double& level) {
   for (int tries = 0; tries < kWetSetTries; ++tries) {
     const WetSetFit fit = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet,
-                                           kSmallestSettledJacobian, slope, &b.wetted);
+                                           kSmallestSettledJacobian, slope, &b.wetted, &level);
     if (fit == WetSetFit::exact) return true;
     if (fit == WetSetFit::undetermined) return false;
     std::swap(b.wet, b.wetted);
@@ -361,15 +363,21 @@ bool wet_set_slope(double depth, double grad_h_x, double grad_h_y, NodeBuffer& b
 // (level_holding); Newton's method then finds s from the second, with the Jacobian
 // J = sum_wet grad w_k (o_k - o_mean)^T (o_mean: the wet weights' centroid, through d eta_i/d s).
 // A step that raises the residual (it crossed a change of the wet set) is halved.
+// `level`: the plane's level at the particle where an exact solve on a wet set gave the slope
+// returned, uncut, else NaN; `interior`: that wet set was every node of the support.
 std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, double grad_h_y,
                                     const std::vector<char>& occupied, std::size_t own_node,
-                                    NodeBuffer& b) {
+                                    NodeBuffer& b, double& level_at_particle,
+                                    bool& interior_plane) {
+  level_at_particle = std::numeric_limits<double>::quiet_NaN();
+  interior_plane = false;
+  double all_wet_level = level_at_particle, settled_level = level_at_particle;
   // Every node wet: the plane of grad h_i and the bed's slope through the kernel. When it wets
   // them all it is the root; when it does not, it is still the plane a support too thinly wet to
   // hold one falls back on (below).
   std::array<double, 2> all_wet{};
   WetSetFit interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian,
-                                        all_wet, &b.wetted_by_all_wet_plane);
+                                        all_wet, &b.wetted_by_all_wet_plane, &all_wet_level);
   // A partly dry support: lower ground beyond a rim left out (drop_ground_beyond_rims), then its
   // wet set, first guessed as the nodes under the level that holds the depth sum with no slope,
   // then (where that set holds no plane, as a film's few nodes on a hillside do not) as the
@@ -381,8 +389,8 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
   if (!solved) {
     level = level_holding(b.z, b.w, depth);
     if (drop_ground_beyond_rims(occupied, own_node, depth, b, level)) {
-      interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian,
-                                  all_wet, &b.wetted_by_all_wet_plane);
+      interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian, all_wet,
+                                  &b.wetted_by_all_wet_plane, &all_wet_level);
       exact = interior == WetSetFit::exact;
       solved = exact;
     }
@@ -393,12 +401,12 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     if (std::isfinite(level)) {
       b.wet.resize(count);
       for (std::size_t k = 0; k < count; ++k) b.wet[k] = b.z[k] < level ? 1 : 0;
-      solved = wet_set_slope(depth, grad_h_x, grad_h_y, b, by_wet_set);
+      solved = wet_set_slope(depth, grad_h_x, grad_h_y, b, by_wet_set, settled_level);
     }
   }
   if (!solved && interior == WetSetFit::other_set) {
     b.wet = b.wetted_by_all_wet_plane;
-    solved = wet_set_slope(depth, grad_h_x, grad_h_y, b, by_wet_set);
+    solved = wet_set_slope(depth, grad_h_x, grad_h_y, b, by_wet_set, settled_level);
   }
   // Neither settles (a few per cent of the partly dry supports on the valley flood): Newton's
   // steps from a level surface.
@@ -408,6 +416,7 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     b.wet.assign(count, 0);
     b.previous_wet.assign(count, 2);  // no set yet
   }
+  bool newton_settled = false;  // ended on an exact solve on a settled wet set
   double base_x = 0.0, base_y = 0.0, step_x = 0.0, step_y = 0.0;
   double previous_residual = std::numeric_limits<double>::infinity();
   for (int steps = 0; !solved && steps < kMaxPlaneSteps; ++steps) {
@@ -446,10 +455,12 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     if (b.wet == b.previous_wet) {
       std::array<double, 2> settled{};
       const WetSetFit fit =
-          plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet, kSmallestSettledJacobian, settled);
+          plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet, kSmallestSettledJacobian, settled,
+                           nullptr, &settled_level);
       if (fit == WetSetFit::exact) {
         sx = settled[0];
         sy = settled[1];
+        newton_settled = true;
         break;
       }
       undetermined = fit == WetSetFit::undetermined;
@@ -503,19 +514,29 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
   // The cut (kSteepestFactor); the bed's slope is needed only for a plane steeper than the depth
   // sum's slope alone allows, which few are.
   const double magnitude = norm(sx, sy), depth_slope = norm(grad_h_x, grad_h_y);
+  bool cut = false;
   if (magnitude > kSteepestFactor * depth_slope) {
     const double steepest = kSteepestFactor * (depth_slope + bed_gradient(b));
     if (magnitude > steepest) {
       sx *= steepest / magnitude;
       sy *= steepest / magnitude;
+      cut = true;
     }
+  }
+  if (!cut && exact) {
+    level_at_particle = all_wet_level;
+    interior_plane = true;
+  } else if (!cut && (solved || newton_settled)) {
+    level_at_particle = settled_level;
   }
   return {sx, sy};
 }
 
+// The plane of every fluid particle into `planes`, and the scheme's pressure force taken back
+// from the accelerations (the plane's force follows once the planes agree: apply()).
 template <class K>
-void apply_with(const BedSource& bed, const BedLattice& lattice, std::vector<char>& occupied,
-                StepContext& c) {
+void find_planes(const BedSource& bed, const BedLattice& lattice, std::vector<char>& occupied,
+                 ParticlePlanes& planes, StepContext& c) {
   auto& p = c.particles;
   const std::size_t n = p.fluid_count();
   sample_bed_at_particles(bed, p);
@@ -555,10 +576,29 @@ void apply_with(const BedSource& bed, const BedLattice& lattice, std::vector<cha
         py += pressure * dy;
       }
       gather_nodes<K>(lattice, p.x[i], p.y[i], hi, nodes);
-      const auto [sx, sy] = surface_slope(p.depth[i], hi, grad_h_x, grad_h_y, occupied,
-                                          lattice.nearest_node(p.x[i], p.y[i]), nodes);
-      c.accel_x[i] += -g * sx + g * px;
-      c.accel_y[i] += -g * sy + g * py;
+      double level = 0.0;
+      bool interior = false;
+      const auto [sx, sy] =
+          surface_slope(p.depth[i], hi, grad_h_x, grad_h_y, occupied,
+                        lattice.nearest_node(p.x[i], p.y[i]), nodes, level, interior);
+      planes.slope_x[i] = sx;
+      planes.slope_y[i] = sy;
+      // The plane's level at x_i, and whether it wets the whole support (the nodes beyond a
+      // rim, dropped by surface_slope, are not part of it): given by the exact solve that found
+      // the plane for most, found over the tilted nodes for the rest.
+      if (!std::isfinite(level)) {
+        nodes.tilted.resize(nodes.z.size());
+        for (std::size_t k = 0; k < nodes.z.size(); ++k)
+          nodes.tilted[k] = nodes.z[k] - sx * nodes.ox[k] - sy * nodes.oy[k];
+        level = level_holding(nodes.tilted, nodes.w, p.depth[i]);
+        interior = std::isfinite(level);
+        for (std::size_t k = 0; k < nodes.z.size() && interior; ++k)
+          interior = nodes.tilted[k] < level;
+      }
+      planes.level[i] = level;
+      planes.interior[i] = interior ? 1 : 0;
+      c.accel_x[i] += g * px;
+      c.accel_y[i] += g * py;
     }
   }
 }
@@ -592,9 +632,17 @@ double level_holding(std::span<const double> z, std::span<const double> w, doubl
 }
 
 void BalancedBedSlope::apply(StepContext& context) {
+  auto& p = context.particles;
+  planes_.resize(p.fluid_count());
   with_kernel_shape(context.kernel.shape(), [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    apply_with<K>(*bed_, *lattice_, occupied_, context);
+    find_planes<K>(*bed_, *lattice_, occupied_, planes_, context);
+  });
+  arrangement_error_.remove(p, context.neighbors, context.kernel.shape(), planes_);
+  const double g = context.settings.gravity_m_s2;
+  parallel_for(p.fluid_count(), [&](std::size_t i) {
+    context.accel_x[i] -= g * planes_.slope_x[i];
+    context.accel_y[i] -= g * planes_.slope_y[i];
   });
 }
 

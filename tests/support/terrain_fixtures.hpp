@@ -1,6 +1,6 @@
 #pragma once
-// Small pieces the raster, terrain, map and scene tests all need: a CRS as WKT, and a grid
-// geometry in one line.
+// Small pieces the raster, terrain, map and scene tests all need: a CRS as WKT, a grid
+// geometry in one line, and a field sampled from a formula.
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 #include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "swemps/terrain/gridded_field.hpp"
 
@@ -35,6 +37,22 @@ inline terrain::GridGeometry grid_geometry(std::size_t columns, std::size_t rows
   g.cell_width = cell_width;
   g.cell_height = cell_height;
   return g;
+}
+
+// A field of square cells in local metres over [0, columns * cell] x [0, rows * cell], north
+// up, each cell holding elevation(x, y) at its centre (the analytic beds of the verification
+// tests, written with io::write_geotiff).
+template <class Elevation>
+terrain::GriddedField sampled_field(std::size_t columns, std::size_t rows, double cell,
+                                    const Elevation& elevation) {
+  const double y_top = static_cast<double>(rows) * cell;
+  std::vector<double> z(columns * rows);
+  for (std::size_t row = 0; row < rows; ++row) {
+    const double y = y_top - (static_cast<double>(row) + 0.5) * cell;
+    for (std::size_t column = 0; column < columns; ++column)
+      z[row * columns + column] = elevation((static_cast<double>(column) + 0.5) * cell, y);
+  }
+  return terrain::GriddedField(grid_geometry(columns, rows, 0.0, y_top, cell, cell), std::move(z));
 }
 
 }  // namespace swemps::testing
