@@ -68,13 +68,10 @@ bool level_gradient(const particles::SweParticles& p, const neighbors::NeighborL
 template <class K>
 void remove_with(const particles::SweParticles& p, const neighbors::NeighborList& neighbors,
                  ParticlePlanes& planes, std::vector<double>& average_weight,
-                 std::vector<double>& error_x, std::vector<double>& error_y,
-                 std::vector<double>& mean_x, std::vector<double>& mean_y) {
+                 std::vector<double>& error_x, std::vector<double>& error_y) {
   const std::size_t n = p.fluid_count();
   error_x.assign(n, 0.0);
   error_y.assign(n, 0.0);
-  mean_x.assign(n, 0.0);
-  mean_y.assign(n, 0.0);
   average_weight.resize(neighbors.index.size());
   const auto takes_part = [&](std::size_t i) {
     return planes.interior[i] && std::isfinite(planes.level[i]);
@@ -87,7 +84,8 @@ void remove_with(const particles::SweParticles& p, const neighbors::NeighborList
     error_x[i] = planes.slope_x[i] - gx;
     error_y[i] = planes.slope_y[i] - gy;
   });
-  // <e>_i over i itself and its interior neighbours, weighed by A_j W(r_ij, h_i).
+  // <e>_i over i itself and its interior neighbours, weighed by A_j W(r_ij, h_i), taken from
+  // the slope (this pass reads only the errors, so the slopes can change as it goes).
   parallel_for(n, [&](std::size_t i) {
     if (!takes_part(i)) return;
     double weight = p.area[i] * K::w(0.0, p.smoothing_length[i]);
@@ -100,13 +98,9 @@ void remove_with(const particles::SweParticles& p, const neighbors::NeighborList
       sum_x += weights[k] * error_x[row[k]];
       sum_y += weights[k] * error_y[row[k]];
     }
-    mean_x[i] = sum_x / weight;
-    mean_y[i] = sum_y / weight;
+    planes.slope_x[i] -= sum_x / weight;
+    planes.slope_y[i] -= sum_y / weight;
   });
-  for (std::size_t i = 0; i < n; ++i) {
-    planes.slope_x[i] -= mean_x[i];
-    planes.slope_y[i] -= mean_y[i];
-  }
 }
 
 }  // namespace
@@ -116,7 +110,7 @@ void ArrangementSlopeError::remove(const particles::SweParticles& p,
                                    ParticlePlanes& planes) {
   with_kernel_shape(shape, [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-    remove_with<K>(p, neighbors, planes, average_weight_, error_x_, error_y_, mean_x_, mean_y_);
+    remove_with<K>(p, neighbors, planes, average_weight_, error_x_, error_y_);
   });
 }
 

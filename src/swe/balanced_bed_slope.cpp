@@ -363,8 +363,8 @@ bool wet_set_slope(double depth, double grad_h_x, double grad_h_y, NodeBuffer& b
 // (level_holding); Newton's method then finds s from the second, with the Jacobian
 // J = sum_wet grad w_k (o_k - o_mean)^T (o_mean: the wet weights' centroid, through d eta_i/d s).
 // A step that raises the residual (it crossed a change of the wet set) is halved.
-// `level`: the plane's level at the particle where an exact solve on a wet set gave the slope
-// returned, uncut, else NaN; `interior`: that wet set was every node of the support.
+// `level_at_particle`: the plane's level at the particle where an exact solve on a wet set gave
+// the slope returned, uncut, else NaN; `interior_plane`: that wet set was every node.
 std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, double grad_h_y,
                                     const std::vector<char>& occupied, std::size_t own_node,
                                     NodeBuffer& b, double& level_at_particle,

@@ -15,9 +15,9 @@
 // about eta_i (weighted as the depth sum's gradient is), is first-order consistent whatever
 // the arrangement. A force from G_i alone has no stiffness against particle-scale
 // rearrangement, though: lakes at rest, perturbed by round-off, set off at metres per second
-// within the hour (measured). So the two are split by
-// scale, as a collocated grid's pressure is (Rhie and Chow): the error e_i = s_i - G_i is
-// averaged over the kernel, <e>_i = sum_j A_j W_ij e_j / sum_j A_j W_ij, and the slope becomes
+// within the hour (measured). So the two are split by scale, as a collocated grid's pressure
+// is (Rhie and Chow): the error e_i = s_i - G_i is averaged over the kernel,
+// <e>_i = sum_j A_j W_ij e_j / sum_j A_j W_ij, and the slope becomes
 //
 //   s_i - <e>_i,
 //
@@ -63,7 +63,6 @@ class ArrangementSlopeError {
  private:
   std::vector<double> average_weight_;     // per neighbour pair: its weight in <e>_i
   std::vector<double> error_x_, error_y_;  // e_i, per fluid particle
-  std::vector<double> mean_x_, mean_y_;    // <e>_i
 };
 
 }  // namespace swemps::swe
