@@ -526,6 +526,9 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   report.relative_volume_change = sim.relative_volume_change();
   report.wall_s = wall_s;
   report.output = output.path();
+  report.phases = sim.phase_times();
+  report.effects = sim.effect_times();
+  report.output_s = output.seconds();
   return report;
 }
 

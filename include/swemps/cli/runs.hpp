@@ -7,10 +7,12 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <vector>
 
 #include "swemps/cli/output.hpp"
 #include "swemps/particles/swe_particles.hpp"
 #include "swemps/scenario/scenario.hpp"
+#include "swemps/swe/simulation.hpp"
 
 namespace swemps::cli {
 
@@ -26,6 +28,11 @@ struct RunReport {
   std::size_t wall_particles = 0, dummy_particles = 0;
   double wall_s = 0.0;  // the whole run: building, stepping and writing
   std::filesystem::path output;
+  // Shallow water: where the time went, as the run's closing summary logs it (the step's
+  // phases, each effect, and the output: maps, statistics, gauges and files).
+  swe::PhaseTimes phases;
+  std::vector<swe::EffectTime> effects;
+  double output_s = 0.0;
 };
 
 // Told the front position x (m) at a simulated time t (s): after every step of a
