@@ -18,29 +18,18 @@
 #include <unistd.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <filesystem>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "bench_threads.hpp"
 #include "swemps/cli/runs.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::vector<int> thread_counts() {
-  std::vector<int> counts;
-  if (const char* env = std::getenv("SWEMPS_BENCH_THREADS")) {
-    std::istringstream in(env);
-    for (int t; in >> t;) counts.push_back(t);
-  }
-  if (counts.empty()) counts = {1};
-  return counts;
-}
 
 // The balanced or point bed term: the effect a real-terrain step spends most on.
 bool is_bed_term(const std::string& effect_name) { return effect_name.rfind("bed slope", 0) == 0; }
@@ -77,7 +66,7 @@ int main(int argc, char** argv) {
       fs::temp_directory_path() / ("swemps-scene-speed-" + std::to_string(getpid()));
   int status = 0;
   for (const auto& file : scenes) {
-    for (const int threads : thread_counts()) {
+    for (const int threads : swemps::bench::thread_counts({1})) {
       try {
         auto scene = swemps::scenario::load(file);
         if (scene.model != swemps::scenario::Model::swe) {

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_threads.hpp"
 #include "swemps/cli/output.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
@@ -140,16 +141,6 @@ Measurement measure(std::size_t particles, int threads, double particle_steps_wa
   return m;
 }
 
-std::vector<int> thread_counts() {
-  std::vector<int> counts;
-  if (const char* env = std::getenv("SWEMPS_BENCH_THREADS")) {
-    std::istringstream in(env);
-    for (int t; in >> t;) counts.push_back(t);
-  }
-  if (counts.empty()) counts = {1, 2};
-  return counts;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -170,7 +161,7 @@ int main(int argc, char** argv) {
       "map write (s) "
       "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::size_t n : sizes) {
-    for (const int threads : thread_counts()) {
+    for (const int threads : swemps::bench::thread_counts({1, 2})) {
       const auto m = measure(n, threads, wanted, seed);
       const double rate = static_cast<double>(m.particle_steps) / m.wall_s;
       std::printf(
