@@ -75,7 +75,8 @@ class SweOutput {
 
   // The flood statistics, so that a peak between series samples is kept: at most once a step,
   // and once a wave could have crossed half a map cell since the last sample (the Courant
-  // number 0.5 of a grid model on those cells), or when `due_now` (an output time, so that the
+  // number 0.5 of a grid model on those cells; half a particle spacing where the cells are
+  // finer: statistics_interval), or when `due_now` (an output time, so that the
   // envelopes hold every map written). A cell's water cannot change faster than that, so the
   // envelopes keep every peak the maps can show; the particles' steps are several times
   // shorter (the fastest of a few thousand sets them), and sampling each would cost as much
@@ -151,8 +152,14 @@ class SweOutput {
  private:
   static constexpr double kMapCourant = 0.5;
 
-  // Until the next statistics sample: kMapCourant map cells at the fastest wave speed
-  // |u| + sqrt(g h) of any particle; 0 (the next step) without water.
+  // Until the next statistics sample: kMapCourant times the shortest length the maps resolve
+  // (CellAverages::resolved_length_m: a cell, or the finest particle spacing where cells are
+  // finer), at the fastest wave speed |u| + sqrt(g h) of any particle; 0 (the next step)
+  // without water. Where cells are finer than the particles, a wave crossing half a cell
+  // changes what the cells read by less than the envelopes resolve anyway: each particle's
+  // water is spread over its kernel. Measured on Thacker's bowl (2 cm cells, 4 cm particles):
+  // 758 samples instead of 1,448, and the maximum-depth map within 0.58 mm of the one sampled
+  // at every half cell (0.6 % of the deepest water; 5 um on average).
   double statistics_interval(const particles::SweParticles& p) const {
     double fastest = 0.0;
     for (std::size_t i = 0; i < p.fluid_count(); ++i) {
@@ -160,7 +167,7 @@ class SweOutput {
       fastest = std::max(fastest, c);
     }
     if (!(fastest > 0.0)) return 0.0;
-    return kMapCourant * std::min(grid_.dx, grid_.dy) / fastest;
+    return kMapCourant * cells_.resolved_length_m() / fastest;
   }
 
   // The gridded fields of the current state, computed once per state (maps and sample share
@@ -302,6 +309,10 @@ void log_summary(const swe::Simulation& sim, const std::string& ending,
       "shift {:.3f} s, integrate {:.3f} s, walls {:.3f} s, snapshots {:.3f} s, output {:.3f} s",
       t.sort, t.neighbors, t.depth, t.gradient, t.shift, t.integrate, t.walls, t.snapshots,
       output_s);
+  spdlog::info(
+      "neighbour rows: {} searches of every row, {} repairs of the rows around changed "
+      "particles",
+      sim.search_counts().searches, sim.search_counts().repairs);
   if (const auto& n = sim.neighbor_counts(); !n.empty()) {
     spdlog::info("neighbours per particle over the run: min {}, median {}, max {}", n.min(),
                  n.median(), n.max());
@@ -512,8 +523,8 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   progress.finish();
   output.finish();
   spdlog::info(
-      "flood statistics sampled {} times (a wave crossing half a map cell, and every output "
-      "time): {:.3f} s of the output time (gridding and accumulating)",
+      "flood statistics sampled {} times (a wave crossing half a map cell or particle spacing, "
+      "and every output time): {:.3f} s of the output time (gridding and accumulating)",
       output.statistics_samples(), output.statistics_seconds());
   const double wall_s = seconds_since(start);
   log_summary(sim, "done", initial_particles, initial_particle_steps, wall_s, output.seconds(),

@@ -31,6 +31,7 @@ CellAverages::CellAverages(const swe::RegularGrid& grid, std::shared_ptr<const s
                            Bounds domain, double finest_spacing_m, std::size_t stored_sub_points)
     : grid_(grid), bed_(std::move(bed)), domain_(domain) {
   const double cell = std::min(grid.dx, grid.dy);
+  resolved_length_m_ = std::max(cell, finest_spacing_m);
   // A spacing apart puts about 20 sub-points under a particle's support disc (radius 2.6
   // spacings at the conservative scheme's kappa of 1.3), and the shares move smoothly with the
   // particle because the kernel falls to zero at the support's edge.

@@ -111,6 +111,18 @@ void write_rows(std::size_t target_count, const Most& most, const Fill& fill, Ne
   });
 }
 
+// A row put in ascending order, by insertion: rows come from the search in block order, which
+// is close to ascending when the points are sorted by cell (as the particles are every few
+// steps), so this is a few comparisons an entry.
+void sort_row(std::uint32_t* row, std::uint32_t length) {
+  for (std::uint32_t a = 1; a < length; ++a) {
+    const std::uint32_t value = row[a];
+    std::uint32_t b = a;
+    for (; b > 0 && row[b - 1] > value; --b) row[b] = row[b - 1];
+    row[b] = value;
+  }
+}
+
 // The rows of the uniform-radius builder. `within(k, r2)` says whether the point at
 // cell-ordered position k, at squared distance r2 from the target, is its neighbour. The
 // loops read the cell-ordered coordinates with unit stride. A target is one of the binned
@@ -238,7 +250,12 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
     visit_wide(i, p, found);
     return m;
   };
-  write_rows(target_count, most, fill, out);
+  const auto fill_ascending = [&](std::size_t i, std::uint32_t* index) {
+    const std::uint32_t m = fill(i, index);
+    sort_row(index, m);
+    return m;
+  };
+  write_rows(target_count, most, fill_ascending, out);
 }
 
 double typical_radius(std::span<const double> radii, std::vector<double>& scratch) {

@@ -142,6 +142,7 @@ void ParticleSplitting::apply(swe::StepContext& context) {
   p.drop_ghosts();
   for (const Plan& plan : plans_) {
     const std::size_t i = plan.parent;
+    if (context.changed) context.changed->push_back(static_cast<std::uint32_t>(i));
     const Daughter& a = plan.a;
     p.x[i] = a.x;
     p.y[i] = a.y;

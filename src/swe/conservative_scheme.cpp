@@ -218,19 +218,30 @@ void ConservativeScheme::choose_smoothing_lengths(particles::SweParticles& p) {
 
 bool ConservativeScheme::sum_depth(particles::SweParticles& p,
                                    const neighbors::NeighborList& nl) {
-  const std::size_t n = p.fluid_count();
-  iterations_.assign(n, 0);
-  std::vector<std::uint8_t> outgrown(n, 0);
+  return sum_depths(p, nl, {}, true);
+}
+
+bool ConservativeScheme::sum_depth_of(particles::SweParticles& p, const neighbors::NeighborList& nl,
+                                      std::span<const std::uint32_t> which) {
+  return sum_depths(p, nl, which, false);
+}
+
+bool ConservativeScheme::sum_depths(particles::SweParticles& p, const neighbors::NeighborList& nl,
+                                    std::span<const std::uint32_t> which, bool every) {
+  const std::size_t count = every ? p.fluid_count() : which.size();
+  iterations_.assign(count, 0);
+  grown_.assign(count, 0);
   with_kernel_shape(kernel_.shape(), [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
-#pragma omp parallel if (n > static_cast<std::size_t>(parallel_threshold))
+#pragma omp parallel if (count > static_cast <std::size_t>(parallel_threshold))
     {
       RowBuffer row;
 #pragma omp for schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t m = 0; m < count; ++m) {
+        const std::size_t i = every ? m : which[m];
         const double searched_h = p.smoothing_length[i];
-        iterations_[i] = sum_depth_at<K>(p, nl, i, kappa_, max_area_ratio_, row);
-        outgrown[i] = p.smoothing_length[i] > searched_h * (1.0 + kSearchMargin);
+        iterations_[m] = sum_depth_at<K>(p, nl, i, kappa_, max_area_ratio_, row);
+        grown_[m] = p.smoothing_length[i] > searched_h * (1.0 + kSearchMargin);
       }
     }
   });
@@ -240,7 +251,10 @@ bool ConservativeScheme::sum_depth(particles::SweParticles& p,
     last_iterations_ += k;
     last_most_iterations_ = std::max<std::size_t>(last_most_iterations_, k);
   }
-  return std::none_of(outgrown.begin(), outgrown.end(), [](std::uint8_t o) { return o != 0; });
+  outgrown_.clear();
+  for (std::size_t m = 0; m < count; ++m)
+    if (grown_[m]) outgrown_.push_back(static_cast<std::uint32_t>(every ? m : which[m]));
+  return outgrown_.empty();
 }
 
 void ConservativeScheme::surface_acceleration(particles::SweParticles& p,

@@ -9,38 +9,12 @@
 #include <optional>
 #include <sstream>
 
+#include "scoped_timer.hpp"
 #include "swemps/neighbors/parallel.hpp"
 
 namespace swemps::swe {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// Steps between two sorts of the particles by cell: sorting costs a tenth of a step; between
-// sorts, the neighbour search still finds every neighbour, only with less memory locality.
-constexpr std::size_t kSortInterval = 8;
-
-// Cells half as wide as the support for the neighbour search: about 40 candidates per
-// particle instead of 57 for some 20 neighbours (neighbors/cell_list.hpp).
-constexpr int kCellSubdivisions = 2;
-
-// Adds the time since `start` to `total` when it goes out of scope.
-class ScopedTimer {
- public:
-  explicit ScopedTimer(double& total) : total_(total), start_(Clock::now()) {}
-  ~ScopedTimer() { total_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
-  ScopedTimer(const ScopedTimer&) = delete;
-  ScopedTimer& operator=(const ScopedTimer&) = delete;
-
- private:
-  double& total_;
-  Clock::time_point start_;
-};
-
-neighbors::Coordinates<2> positions(const particles::SweParticles& p, std::size_t count) {
-  return {std::span<const double>(p.x.data(), count), std::span<const double>(p.y.data(), count)};
-}
 
 // Steps between two snapshots kept for the rollback after a breakdown (keep_snapshot()).
 constexpr std::size_t kSnapshotInterval = 32;
@@ -128,15 +102,6 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
   ledger_.initial_m3 = particles_.total_fluid_volume();
 }
 
-void Simulation::sort_by_cell() {
-  ScopedTimer timer(phase_times_.sort);
-  last_sort_step_ = steps_;
-  sorted_count_ = particles_.fluid_count();
-  cells_.build(positions(particles_, particles_.fluid_count()), largest_search_radius());
-  order_.assign(cells_.order().begin(), cells_.order().end());
-  particles_.reorder(order_);
-}
-
 // Non-finite values are found in passes the step makes anyway; values derive from one
 // another, so a few stand for the rest:
 //  - positions: a non-finite acceleration or velocity makes the position non-finite
@@ -154,10 +119,13 @@ void Simulation::refresh() {
   if (!moved_finite_) report_broken_positions();
   update_fields_checked(sorting_due());
   const std::size_t before = particles_.fluid_count();
+  changed_.clear();
   run_effects(Stage::resolution, 0.0);
   // A resolution effect changed the particle set: the neighbour list and the sums no longer
-  // describe it. Once more, without the resolution stage, so one step splits at most once.
-  if (particles_.fluid_count() != before) update_fields_checked(sorting_due());
+  // describe it. Repaired around the changes, or once more whole, without the resolution
+  // stage, so one step splits at most once.
+  if (particles_.fluid_count() != before && !repair_after_resolution(before, changed_))
+    update_fields_checked(sorting_due());
   check_refreshed_fields();
   fresh_ = true;
   keep_snapshot();
@@ -386,70 +354,6 @@ void Simulation::load_state(StateReader& in) {
   moved_finite_ = true;
 }
 
-double Simulation::largest_search_radius() const {
-  const std::size_t n = particles_.fluid_count();
-  std::array<double, reduction_chunks> largest{};
-  parallel_chunks(n, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-      largest[chunk] = std::max(largest[chunk], particles_.smoothing_length[i]);
-  });
-  return scheme_->search_radius(*std::max_element(largest.begin(), largest.end()));
-}
-
-void Simulation::add_ghosts_and_neighbors() {
-  const auto fluid_radii = std::span<const double>(particles_.smoothing_length)
-                               .first(particles_.fluid_count());
-  listed_smoothing_length_.assign(fluid_radii.begin(), fluid_radii.end());
-  // Ghosts of every particle within the largest search radius of a wall: a particle's mirror
-  // image is a neighbour of the particles near the wall whose support reaches it.
-  const double reach = largest_search_radius();
-  {
-    ScopedTimer timer(phase_times_.walls);
-    walls_.add_ghosts(particles_, reach);
-  }
-  ScopedTimer timer(phase_times_.neighbors);
-  const auto coords = positions(particles_, particles_.size());
-  if (scheme_->uniform_radius()) {
-    cells_.build(coords, reach, kCellSubdivisions);
-    build_neighbor_list<2>(cells_, coords, particles_.fluid_count(), reach, neighbor_list_);
-    return;
-  }
-  search_radii_.resize(particles_.size());
-  parallel_for(particles_.size(), [&](std::size_t i) {
-    search_radii_[i] = scheme_->search_radius(particles_.smoothing_length[i]);
-  });
-  // Cells for a typical radius, not the largest: a thin sheet's few wide kernels would
-  // otherwise widen every particle's search (4x the candidates where the radius cap doubles
-  // a radius). Those above it are found by the builder's own way for wide points.
-  cells_.build(coords, typical_search_radius(), kCellSubdivisions);
-  build_neighbor_list<2>(cells_, coords, search_radii_, particles_.fluid_count(), neighbor_list_);
-}
-
-double Simulation::typical_search_radius() const {
-  // The typical radius (neighbors::typical_radius_quantile) of the fluid particles' search
-  // radii.
-  const std::size_t n = particles_.fluid_count();
-  if (n == 0) return largest_search_radius();
-  return neighbors::typical_radius(std::span<const double>(search_radii_.data(), n),
-                                   typical_scratch_);
-}
-
-// update_fields() without the radius, the sort and the sums: the ghosts and neighbour list of
-// a restored state, which are functions of the saved positions, fields and radius alone.
-void Simulation::rebuild_neighborhood() {
-  particles_.drop_ghosts();
-  if (particles_.fluid_count() == 0) return;
-  // Searched with the radii the saved list was searched with (listed_smoothing_length_), then
-  // the radii the sums reached, which the ghosts take with the other fields.
-  std::vector<double> reached = listed_smoothing_length_;
-  particles_.smoothing_length.swap(reached);
-  add_ghosts_and_neighbors();
-  particles_.smoothing_length.resize(particles_.fluid_count());
-  particles_.smoothing_length.swap(reached);
-  particles_.smoothing_length.resize(particles_.size());
-  boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
-}
-
 VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth_m,
                                                 double tolerance_m, int max_iterations) {
   std::size_t n = particles_.fluid_count();
@@ -545,35 +449,6 @@ void Simulation::take_summed_areas_as_created(std::vector<std::uint8_t> which) {
   has_snapshot_ = false;  // the areas changed: the next refresh takes a new snapshot
 }
 
-bool Simulation::sorting_due() const {
-  // Particles move at most about half a spacing per step (eq 13), so memory order decays
-  // slowly; a particle set that grew or shrank (splitting, inflow, outflow) is sorted at once,
-  // as new particles are appended far from their neighbours in memory.
-  return steps_ - last_sort_step_ >= kSortInterval || particles_.fluid_count() != sorted_count_ ||
-         steps_ == 0;
-}
-
-void Simulation::update_fields(bool sort) {
-  particles_.drop_ghosts();
-  if (particles_.fluid_count() == 0) return;  // dry so far: nothing to sum
-  // The radii from the areas of the previous summation: they must be known before the
-  // neighbours (and so the new areas) can be found.
-  scheme_->choose_smoothing_lengths(particles_);
-  if (sort) sort_by_cell();
-  // A radius that outgrew its search (the conservative scheme's depth iteration widened it
-  // past the margin) needs the neighbours searched again with the new radii; rare, and never
-  // more than a few times, as each pass starts from the radii the last one reached.
-  for (;;) {
-    add_ghosts_and_neighbors();
-    ScopedTimer timer(phase_times_.depth);
-    if (scheme_->sum_depth(particles_, neighbor_list_)) break;
-    particles_.drop_ghosts();
-  }
-  neighbor_counts_.add(neighbor_list_);
-  // The force reads the ghosts' depth, area and radius.
-  boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
-}
-
 double Simulation::stable_time_step() {
   refresh();
   TimeStepLimit limit = fluid_limit_;
@@ -611,6 +486,7 @@ double Simulation::effects_time_step_limit() const {
 void Simulation::run_effects(Stage stage, double dt_s) {
   StepContext context{particles_, neighbor_list_, scheme_->kernel(), accel_x_, accel_y_,
                       settings_,  ledger_,        time_s_, dt_s};
+  if (stage == Stage::resolution) context.changed = &changed_;
   if (stage == Stage::topology) {
     context.previous_x = old_x_;
     context.previous_y = old_y_;

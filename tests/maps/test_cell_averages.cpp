@@ -263,3 +263,12 @@ TEST_CASE("no share of a particle's water falls behind a wall", "[maps]") {
     CHECK(pair == Approx(0.5 * (5.2 - west_edge)).epsilon(uniform_tolerance(grid, 1, k)));
   }
 }
+
+TEST_CASE("a map resolves its cells, or its particles where cells are finer", "[maps]") {
+  const maps::Bounds domain{0.0, 4.0, 0.0, 2.0};
+  // Cells 0.1 by 0.2 m: the narrower side is what a cell resolves.
+  const swe::RegularGrid grid{0.05, 0.1, 0.1, 0.2, 40, 10};
+  CHECK(maps::CellAverages(grid, nullptr, domain, 0.04).resolved_length_m() == 0.1);
+  CHECK(maps::CellAverages(grid, nullptr, domain, 0.25).resolved_length_m() == 0.25);
+  CHECK(maps::CellAverages(grid, nullptr, domain, 0.0).resolved_length_m() == 0.1);
+}

@@ -22,6 +22,7 @@
 #include "swemps/neighbors/cell_list.hpp"
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/neighbors/parallel.hpp"
+#include "swemps/neighbors/row_repair.hpp"
 
 namespace nb = swemps::neighbors;
 
@@ -650,4 +651,111 @@ TEST_CASE("neighbours of points with their own radii do not depend on the thread
     CHECK(lists[k].offsets == lists[0].offsets);
     CHECK(lists[k].index == lists[0].index);
   }
+}
+
+TEST_CASE("rows of points with their own radii are in ascending order", "[neighbors]") {
+  const auto pts = random_points<2>(large_n, 9);
+  const auto radii = spread_radii(large_n, 0.02, 10);
+  nb::CellList<2> cells;
+  cells.build(pts.coords(), 0.02, 2);
+  nb::NeighborList list;
+  nb::build_neighbor_list<2>(cells, pts.coords(), radii, large_n, list);
+  std::size_t unsorted = 0;
+  for (std::size_t i = 0; i < large_n; ++i) {
+    const auto row = list.row(i);
+    unsorted += std::is_sorted(row.begin(), row.end()) ? 0 : 1;
+  }
+  CHECK(unsorted == 0);
+  CHECK(list.index.size() > 10 * large_n);
+}
+
+// A few points moved, widened or appended, as a depth sum and splitting change them; the
+// repaired rows must be the rows a new search gives, entry for entry.
+TEST_CASE("rows repaired around a few changed points equal a new search", "[neighbors]") {
+  const std::size_t n = GENERATE(as<std::size_t>{}, 300, large_n);
+  // Targets appended (as splitting adds daughters), or candidates that are not targets (as
+  // ghosts are), or neither. Not both: the old list's candidates-only points would move.
+  const auto [appended, candidates_only] =
+      GENERATE(table<std::size_t, std::size_t>({{0, 0}, {7, 0}, {0, 40}}));
+  CAPTURE(n, appended, candidates_only);
+  const std::size_t targets_before = n - candidates_only;
+  auto pts = random_points<2>(n, static_cast<std::uint32_t>(3 + n));
+  auto radii = spread_radii(n, 0.02, static_cast<std::uint32_t>(4 + n));
+  nb::CellList<2> cells;
+  cells.build(pts.coords(), 0.02, 2);
+  nb::NeighborList list;
+  nb::build_neighbor_list<2>(cells, pts.coords(), radii, targets_before, list);
+  const nb::NeighborList before = list;
+
+  // Targets appended go before the candidates-only points, as fluid particles precede ghosts.
+  Points<2> now;
+  std::vector<double> now_radii;
+  for (std::size_t i = 0; i < targets_before; ++i) {
+    now.add(pts.at(i));
+    now_radii.push_back(radii[i]);
+  }
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<std::uint32_t> changed;
+  for (std::size_t k = 0; k < appended; ++k) {
+    now.add({u(gen) - 0.37, u(gen) - 0.37});
+    now_radii.push_back(0.02 * (0.5 + 2.0 * u(gen)));
+  }
+  for (std::size_t i = targets_before; i < n; ++i) {
+    now.add(pts.at(i));
+    now_radii.push_back(radii[i]);
+  }
+  for (std::size_t i = 0; i < now.size(); i += 37) {
+    if (i >= targets_before && i < targets_before + appended) continue;
+    if (i % 2 == 0) {
+      now.x[0][i] += 0.01 * (u(gen) - 0.5);  // moved
+    } else {
+      now_radii[i] *= 1.0 + 0.3 * u(gen);  // widened
+    }
+    changed.push_back(static_cast<std::uint32_t>(i));
+  }
+  for (std::size_t k = 0; k < appended; ++k)
+    changed.push_back(static_cast<std::uint32_t>(targets_before + k));
+  std::sort(changed.begin(), changed.end());
+  const std::size_t targets = targets_before + appended;
+
+  nb::CellList<2> now_cells;
+  now_cells.build(now.coords(), 0.02, 2);
+  const auto rewritten =
+      nb::repair_rows<2>(now_cells, now.coords(), now_radii, targets, changed, list);
+  nb::NeighborList fresh;
+  nb::build_neighbor_list<2>(now_cells, now.coords(), now_radii, targets, fresh);
+  CHECK(list.offsets == fresh.offsets);
+  CHECK(list.index == fresh.index);
+
+  // Every row that differs from the old one is among those said rewritten, and so is every
+  // changed target.
+  std::size_t unreported = 0;
+  for (std::size_t i = 0; i < targets; ++i) {
+    const bool differs =
+        i >= before.row_count() || !std::ranges::equal(before.row(i), fresh.row(i));
+    const bool said = std::binary_search(rewritten.begin(), rewritten.end(), i);
+    unreported += differs && !said ? 1 : 0;
+  }
+  CHECK(unreported == 0);
+  for (const std::uint32_t c : changed)
+    if (c < targets) CHECK(std::binary_search(rewritten.begin(), rewritten.end(), c));
+  CHECK(rewritten.size() < targets / 2 + 50);  // a repair, not a rewrite of everything
+}
+
+TEST_CASE("a repair refuses changes it cannot trust", "[neighbors]") {
+  const auto pts = random_points<2>(50, 1);
+  const std::vector<double> radii(50, 0.1);
+  nb::CellList<2> cells;
+  cells.build(pts.coords(), 0.1);
+  nb::NeighborList list;
+  nb::build_neighbor_list<2>(cells, pts.coords(), radii, 40, list);
+  const std::vector<std::uint32_t> unsorted{5, 3}, beyond{60};
+  CHECK_THROWS_AS(nb::repair_rows<2>(cells, pts.coords(), radii, 40, unsorted, list),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(nb::repair_rows<2>(cells, pts.coords(), radii, 40, beyond, list),
+                  std::invalid_argument);
+  // A new target that is not listed as changed has no row to keep.
+  CHECK_THROWS_AS(nb::repair_rows<2>(cells, pts.coords(), radii, 45, {}, list),
+                  std::invalid_argument);
 }

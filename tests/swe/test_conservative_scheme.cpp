@@ -2,11 +2,13 @@
 // depths on three arrangements, the depth iteration, equal and opposite pair forces, momentum
 // and energy, rest, and splitting with per-particle radii.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
 #include "swemps/boundaries/ghost_walls.hpp"
+#include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/conservative_scheme.hpp"
 #include "swemps/swe/operators.hpp"
@@ -335,4 +337,46 @@ TEST_CASE("conservative scheme: daughters of a split get their own radius", "[sw
     const double area = std::min(q.area[i], settings.area_ratio_cap() * q.initial_area[i]);
     CHECK(q.smoothing_length[i] == Approx(settings.kappa * std::sqrt(area)).epsilon(1e-8));
   }
+}
+
+TEST_CASE("conservative scheme: a few depths summed again are those of summing all",
+          "[swe][conservative]") {
+  // The depths of a repair (neighbors/row_repair.hpp): the particles named are summed as a
+  // sum of every particle sums them, bit for bit, and the others are left as they were.
+  auto start = water(Arrangement::jittered, 1.0, 1.0, 0.3, 0.05);
+  for (std::size_t i = 0; i < start.fluid_count(); ++i) {
+    start.volume[i] *= 1.0 + 0.2 * std::sin(5.0 * start.y[i]);
+    start.smoothing_length[i] = conservative().kappa * std::sqrt(start.area[i]);
+  }
+  // Every pair within 0.3 m: wider than any support here (2 x 1.3 x 0.05 x 1.05 and some).
+  const auto nl = neighbors::brute_force_neighbors<2>(
+      {std::span<const double>(start.x), std::span<const double>(start.y)}, start.fluid_count(),
+      0.3);
+  swe::ConservativeScheme scheme(conservative());
+  // Summed until the radii settle, then the volumes nudged, as a step leaves them.
+  for (int pass = 0; pass < 10 && !scheme.sum_depth(start, nl); ++pass) {
+  }
+  REQUIRE(scheme.sum_depth(start, nl));
+  for (std::size_t i = 0; i < start.fluid_count(); ++i)
+    start.volume[i] *= 1.0 + 0.01 * std::cos(9.0 * start.x[i]);
+  auto all = start;
+  REQUIRE(scheme.sum_depth(all, nl));
+  auto some = start;
+  const std::vector<std::uint32_t> which{3, 40, 41, 250};
+  REQUIRE(scheme.sum_depth_of(some, nl, which));
+  CHECK(scheme.outgrown().empty());
+  for (std::size_t i = 0; i < start.fluid_count(); ++i) {
+    const bool named = std::find(which.begin(), which.end(), i) != which.end();
+    const auto& expected = named ? all : start;
+    CHECK(some.depth[i] == expected.depth[i]);
+    CHECK(some.area[i] == expected.area[i]);
+    CHECK(some.smoothing_length[i] == expected.smoothing_length[i]);
+    CHECK(some.omega[i] == expected.omega[i]);
+  }
+  // A particle searched with a third of its radius outgrows that search, and is named.
+  auto narrow = start;
+  narrow.smoothing_length[40] /= 3.0;
+  CHECK_FALSE(scheme.sum_depth_of(narrow, nl, which));
+  CHECK(std::vector<std::uint32_t>(scheme.outgrown().begin(), scheme.outgrown().end()) ==
+        std::vector<std::uint32_t>{40});
 }

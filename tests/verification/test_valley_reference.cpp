@@ -4,9 +4,9 @@
 //  - its maximum depths against the converged grid-model reference (data/valley-reference:
 //    FV1 on 20.66 m cells, averaged over each 82.6 m output cell; a grid model's result, not
 //    a measurement);
-//  - its maximum depths against the stored result of the code that made the faithful bed, the
-//    cell-average maps and the planes that agree with their neighbours (tests/verification/
-//    data, written by `swe-mps export`), so that later changes cannot move them unnoticed.
+//  - its maximum depths against the stored result of the code as last changed (tests/
+//    verification/data, written by `swe-mps export`; remade with the repaired neighbour rows),
+//    so that later changes cannot move them unnoticed.
 
 #include <netcdf.h>
 
@@ -138,10 +138,12 @@ TEST_CASE("the valley flood at 60 m: maps hold the water, and the depths are the
   CHECK(compared == times.size());
 
   // Against the grid-model reference. Measured with this code: mean absolute difference
-  // 0.412 m, bias +0.218 m (0.405 and +0.210 m before the planes' arrangement error was taken
-  // out; before the faithful bed and the cell averages: 0.47 and +0.24 m at 60 m, 0.49 and
-  // +0.33 m at the shipped 30 m). The bounds leave a tenth for other compilers' round-off, which a
-  // 3 h flood grows; a change of the numerics that costs accuracy on real terrain fails them.
+  // 0.391 m, bias +0.184 m (0.412 and +0.218 m before the repaired neighbour rows changed the
+  // order of sums, round-off the 3 h flood grows; 0.405 and +0.210 m before the planes'
+  // arrangement error was taken out; before the faithful bed and the cell averages: 0.47 and
+  // +0.24 m at 60 m, 0.49 and +0.33 m at the shipped 30 m). The bounds leave a tenth for other
+  // compilers' round-off, which a 3 h flood grows; a change of the numerics that costs accuracy on
+  // real terrain fails them.
   const auto reference = reference_on(map);
   const auto against_reference = difference(map.values, reference);
   INFO("against the reference: MAD " << against_reference.mean_abs << " m, bias "
@@ -151,10 +153,14 @@ TEST_CASE("the valley flood at 60 m: maps hold the water, and the depths are the
   CHECK(against_reference.mean_abs < 0.45);
   CHECK(std::abs(against_reference.bias) < 0.25);
 
-  // Against the stored result of this code: bitwise the same here on any thread count; other
-  // compilers' round-off grows over the 3 h, and 0.05 m is a tenth of what the faithful bed
-  // and the cell averages changed, so a change of the numerics shows (taking the planes'
-  // arrangement error out moved it by 0.093 m).
+  // Against the stored result of this code: bitwise the same here on any thread count, so any
+  // change that reaches these maps shows; 0.05 m is a tenth of what the faithful bed and the
+  // cell averages changed. Round-off alone moves them by more than that over the 3 h: one
+  // force sum reassociated (a change of the last bit of some pair forces) moved them by MAD
+  // 0.090 m, bias -0.034 m, and the repaired neighbour rows, which change only the order of
+  // sums, by 0.096 m and -0.036 m (taking the planes' arrangement error out moved them by
+  // 0.093 m). A change of the order of any sum remakes the stored result, with the round-off
+  // shown to be all it changed.
   swemps::io::RasterRequest stored_request;
   stored_request.path = kSource / "tests/verification/data/valley-60m-max-depth.tif";
   stored_request.purpose = "stored result";

@@ -74,6 +74,11 @@ class CellAverages {
   // ground.
   double level(std::size_t cell, double depth_m) const;
 
+  // The shortest length over which the fields can change: a cell, or the finest spacing the
+  // scene creates particles at where cells are finer (each particle's water is spread over
+  // its kernel, a few spacings wide).
+  double resolved_length_m() const { return resolved_length_m_; }
+
   // Sub-points across one cell, in each direction.
   std::size_t subdivisions() const { return sub_; }
 
@@ -101,6 +106,7 @@ class CellAverages {
   swe::RegularGrid grid_;
   std::shared_ptr<const swe::BedSource> bed_;
   Bounds domain_;
+  double resolved_length_m_ = 0.0;
   std::size_t sub_ = 1;
   double sdx_ = 0.0, sdy_ = 0.0;    // sub-point spacing, m
   double sx0_ = 0.0, sy0_ = 0.0;    // the first sub-point, m

@@ -40,8 +40,11 @@ void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coo
 // rows are symmetric among targets and hold every pair either particle's kernel reaches.
 // `cells` may be sized for a typical radius: a target with a larger radius searches a deeper
 // block, and the few points with one are also found through a coarse cell list of their own,
-// so that a handful of wide kernels does not widen every particle's search. A row lists the
-// pairs of the usual block first, then those of the wide points beyond the target's radius.
+// so that a handful of wide kernels does not widen every particle's search. A row lists its
+// points in ascending order: a row is then a function of the points and radii alone, however
+// it was found, so that rows repaired after a few points changed (row_repair.hpp) are the rows
+// a new search would give, and a run that repairs continues bit for bit after a restart that
+// searches anew.
 template <int Dim>
 void build_neighbor_list(const CellList<Dim>& cells, const Coordinates<Dim>& coords,
                          std::span<const double> radii, std::size_t target_count,

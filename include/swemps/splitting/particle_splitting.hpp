@@ -63,6 +63,7 @@ class ParticleSplitting final : public swe::Effect {
   std::string_view name() const override { return "particle splitting"; }
   swe::Stage stage() const override { return swe::Stage::resolution; }
   void apply(swe::StepContext& context) override;
+  bool lists_changes() const override { return true; }  // each parent it splits
   std::string report() const override;
   void save_state(swe::StateWriter& out) const override;
   void restore_state(swe::StateReader& in) override;

@@ -76,6 +76,7 @@ class BalancedBedSlope final : public Effect {
   std::shared_ptr<const BedSource> bed_;
   std::shared_ptr<const BedLattice> lattice_;
   std::vector<char> occupied_;    // by lattice node: whether a particle sits nearest to it
+  std::vector<std::size_t> marked_;  // the nodes occupied_ marks
   ParticlePlanes planes_;         // this step's planes, one per fluid particle
   ArrangementSlopeError arrangement_error_;
 };

@@ -54,6 +54,9 @@ class ConservativeScheme final : public Scheme {
   }
   bool uniform_radius() const override { return false; }
   bool sum_depth(particles::SweParticles& p, const neighbors::NeighborList& nl) override;
+  bool sum_depth_of(particles::SweParticles& p, const neighbors::NeighborList& nl,
+                    std::span<const std::uint32_t> which) override;
+  std::span<const std::uint32_t> outgrown() const override { return outgrown_; }
   void surface_acceleration(particles::SweParticles& p, const neighbors::NeighborList& nl,
                             double gravity_m_s2, std::span<double> accel_x,
                             std::span<double> accel_y) override;
@@ -63,7 +66,8 @@ class ConservativeScheme final : public Scheme {
                           double dt_s, std::span<double> shift_x,
                           std::span<double> shift_y) override;
 
-  // Newton iterations of the last sum_depth(), summed over particles, and its largest count.
+  // Newton iterations of the last sum_depth() or sum_depth_of(), summed over the particles it
+  // summed, and its largest count.
   std::size_t last_iterations() const { return last_iterations_; }
   std::size_t last_most_iterations() const { return last_most_iterations_; }
 
@@ -77,6 +81,10 @@ class ConservativeScheme final : public Scheme {
   double kappa_, max_area_ratio_, dissipation_, shifting_;
   std::size_t last_iterations_ = 0, last_most_iterations_ = 0;
   std::vector<std::uint32_t> iterations_;
+  std::vector<std::uint8_t> grown_;      // per particle summed: its radius outgrew its search
+  std::vector<std::uint32_t> outgrown_;  // those particles, ascending
+  bool sum_depths(particles::SweParticles& p, const neighbors::NeighborList& nl,
+                  std::span<const std::uint32_t> which, bool every);
   std::vector<double> celerity_;  // sqrt(g d) per particle and ghost, kept between steps
   // C and grad C, summed in the force pass for the shift that follows it.
   ConcentrationField concentration_;

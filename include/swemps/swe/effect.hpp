@@ -4,10 +4,12 @@
 // the effects its scene asked for and calls each at its stage of the step; the step loop
 // itself never asks whether an effect is enabled, so an absent effect costs nothing.
 
+#include <cstdint>
 #include <limits>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/particles/swe_particles.hpp"
@@ -28,7 +30,8 @@ struct VolumeLedger {
 // Where in the step an effect acts (the step order is documented in simulation.hpp).
 enum class Stage {
   resolution,  // in refresh(), after the depth summation, ghosts present: may replace and add
-               // particles (splitting); the simulation then redoes the refresh once
+               // particles (splitting); the simulation then repairs the neighbours and depths
+               // around what changed (Effect::lists_changes), or redoes the refresh once
   forces,      // after the depth-gradient acceleration: add accelerations (bed slope ...)
   velocity,    // after the velocity update, before the move (semi-implicit friction ...)
   topology,    // after the move, ghosts dropped: add or remove particles (outflow, inflow)
@@ -48,6 +51,10 @@ struct StepContext {
   // stage begins (empty in other stages). An effect that removes particles invalidates them
   // for the effects after it, so effects that read them come first in the topology stage.
   std::span<const double> previous_x = {}, previous_y = {};
+  // Resolution stage: an effect that says lists_changes() appends here every fluid particle it
+  // moves or changes in place (volume, radius, A_0); the particles it appends count as changed
+  // without being listed. Null in other stages.
+  std::vector<std::uint32_t>* changed = nullptr;
 };
 
 class Effect {
@@ -61,6 +68,11 @@ class Effect {
   virtual double time_step_limit(const Settings& /*settings*/, double /*time_s*/) const {
     return std::numeric_limits<double>::infinity();
   }
+  // Whether, in the resolution stage, the effect lists in StepContext::changed every particle
+  // it moves or changes in place, and neither removes nor reorders any: the simulation then
+  // repairs the neighbours and depths around those alone instead of searching and summing
+  // every particle again.
+  virtual bool lists_changes() const { return false; }
   // One line for the closing summary (what the effect did over the run); empty for none.
   virtual std::string report() const { return {}; }
   // What the effect carries from one step to the next (an inflow's progress, a time-step

@@ -38,6 +38,16 @@ class Scheme {
   // (smoothing length, grad-h factor). Returns false when some particle's kernel outgrew the
   // radius it was searched with: the caller searches again and calls this once more.
   virtual bool sum_depth(particles::SweParticles& p, const neighbors::NeighborList& nl) = 0;
+  // As sum_depth(), for the fluid particles in `which` (ascending) alone, the others' fields
+  // kept: after a repair rewrote a few rows (neighbors/row_repair.hpp). A scheme whose depths
+  // are not each a sum over the particle's own row sums them all.
+  virtual bool sum_depth_of(particles::SweParticles& p, const neighbors::NeighborList& nl,
+                            std::span<const std::uint32_t> /*which*/) {
+    return sum_depth(p, nl);
+  }
+  // The particles whose kernel outgrew its search in the last sum_depth() or sum_depth_of()
+  // (ascending), when the scheme can name them; empty when it cannot or none did.
+  virtual std::span<const std::uint32_t> outgrown() const { return {}; }
   // The acceleration by the water surface on a flat bed (-g grad h) and the scheme's own
   // dissipation, written into accel (fluid particles). Ghosts must carry the fields sum_depth()
   // set (GhostWalls::copy_fields_to_ghosts).

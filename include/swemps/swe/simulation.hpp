@@ -5,16 +5,18 @@
 // V; its depth h comes from summing its neighbours' volumes with a kernel, its area is
 // A = V / h, and it accelerates down the gradient of the water surface (eq 2). How the depth
 // is summed and the force taken is the Scheme's (scheme.hpp: the seed paper's eqs 5-9, or the
-// conservative scheme). Walls are mirrored ghost particles. Everything else a scene may ask for (bed, friction,
-// splitting, inflow, outflow) is an Effect, called at its stage.
+// conservative scheme). Walls are mirrored ghost particles. Everything else a scene may ask for
+// (bed, friction, splitting, inflow, outflow) is an Effect, called at its stage.
 //
 // One step, and why in this order:
 //  1. refresh(): the scheme chooses each particle's radius from the previous summation (the
 //     seed scheme: eq 9, one for all), sort fluid particles by cell every few steps
 //     (neighbours near in memory), add wall ghosts, build the neighbour list, sum depth and
-//     A = V/h (searching again if a radius outgrew its search), copy them to the ghosts. Then resolution-stage effects (splitting); if they
-//     changed the particles, all of this once more. refresh() is also what output calls, so the
-//     fields written at time t are those the next step uses.
+//     A = V/h (a radius that outgrew its search has its own row searched again), copy them to
+//     the ghosts. Then resolution-stage effects (splitting); if they changed the particles, the
+//     rows around the changes repaired and those depths summed again (without walls), or all
+//     of this once more. refresh() is also what output calls, so the fields written at time t
+//     are those the next step uses.
 //  2. dt from CFL (eq 13) on the fresh depth and area.
 //  3. a = -g grad h and the scheme's dissipation, then forces-stage effects add to a.
 //  4. u += dt a (symplectic Euler: the new velocity moves the particle), then velocity-stage
@@ -68,6 +70,12 @@ struct PhaseTimes {  // wall-clock seconds spent in each part of the step
   // The snapshots kept for a rollback after a breakdown (the checks for non-finite values ride
   // on passes the step makes anyway).
   double snapshots = 0.0;
+};
+
+// How the neighbour rows were brought up to date over a run: searches of every row, and
+// repairs of the few rows around particles that changed (neighbors/row_repair.hpp).
+struct SearchCounts {
+  std::size_t searches = 0, repairs = 0;
 };
 
 // What Simulation::balance_volumes() did.
@@ -149,6 +157,7 @@ class Simulation {
   double relative_volume_change() const;
   std::size_t wall_reflections() const { return wall_reflections_; }
   const PhaseTimes& phase_times() const { return phase_times_; }
+  const SearchCounts& search_counts() const { return search_counts_; }
   std::vector<EffectTime> effect_times() const;
   // The neighbour-row lengths of every summation since this simulation was made (a restored
   // one counts from its restart: a diagnostic, not state).
@@ -175,6 +184,19 @@ class Simulation {
   // The radius the neighbour cells are sized for (neighbors::typical_radius of search_radii_).
   double typical_search_radius() const;
   void update_fields(bool sort);
+  // After a depth sum left some radii past their search (Scheme::outgrown()): their rows
+  // searched again with the radius reached, and each summed again alone, a few passes at most.
+  // False when only a new search of every row will do (the scheme names none, or a radius grew
+  // past the reach the walls' ghosts were made for).
+  bool repair_outgrown_rows();
+  // After the resolution stage changed a few particles (each effect lists_changes()): their
+  // rows repaired and the depths of the rows that hold them summed again. False when the
+  // refresh must be redone whole, which recomputes all it touched: walls, whose ghosts would
+  // move with the particles; an effect that does not list its changes; particles removed; a
+  // radius that outgrew what repair_outgrown_rows() mends.
+  bool repair_after_resolution(std::size_t count_before, std::vector<std::uint32_t> changed);
+  // The end of every update of the fields: the neighbour counts, and the ghosts' fields.
+  void finish_fields();
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
   // update_fields() that turns the cell lists' refusal of a non-finite coordinate into one.
   void update_fields_checked(bool sort);
@@ -207,6 +229,9 @@ class Simulation {
   // and ghosts, and so the order of every sum, follow the searched radii: a restored state
   // searches with these again to continue bit for bit.
   std::vector<double> listed_smoothing_length_;
+  double ghost_reach_ = 0.0;             // the search radius the walls' ghosts were added for
+  std::vector<std::uint32_t> changed_;   // what the resolution stage changed (StepContext)
+  std::vector<std::uint32_t> repaired_;  // repair_outgrown_rows()'s points
   neighbors::CellList<2> cells_;
   neighbors::NeighborList neighbor_list_;
   std::vector<double> accel_x_, accel_y_, old_x_, old_y_, shift_x_, shift_y_;
@@ -214,6 +239,7 @@ class Simulation {
   std::vector<std::uint32_t> order_;
   VolumeLedger ledger_;
   PhaseTimes phase_times_;
+  SearchCounts search_counts_;  // a diagnostic, not state
   NeighborCounts neighbor_counts_;
   double time_s_ = 0.0;
   std::size_t steps_ = 0, particle_steps_ = 0, wall_reflections_ = 0;
