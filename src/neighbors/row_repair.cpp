@@ -128,14 +128,15 @@ std::vector<std::uint32_t> repair_rows(const CellList<Dim>& cells, const Coordin
       std::memmove(list.index.data() + to, list.index.data() + from,
                    length * sizeof(std::uint32_t));
   };
-  std::vector<std::size_t> new_start(targets.size() + 1);
+  std::vector<std::size_t> new_start(targets.size());
   {
     // Forward: the new start of each row, moving those that go towards the front.
     std::size_t at = 0, t = 0;
     for (std::size_t i = 0; i < target_count; ++i) {
       if (t < targets.size() && targets[t] == i) {
-        new_start[t++] = at;
-        at += rows[t - 1].size();
+        new_start[t] = at;
+        at += rows[t].size();
+        ++t;
         continue;
       }
       if (at <= list.offsets[i]) move_row(i, at);

@@ -165,7 +165,8 @@ bool Simulation::repair_outgrown_rows() {
   if (scheme_->uniform_radius()) return false;
   const std::size_t n = particles_.fluid_count();
   for (int pass = 0; pass < kRepairPasses; ++pass) {
-    const auto grown = scheme_->outgrown();
+    // A copy: the sum below names the next pass's.
+    const std::vector<std::uint32_t> grown(scheme_->outgrown().begin(), scheme_->outgrown().end());
     if (grown.empty()) return false;
     repaired_.clear();
     for (const std::uint32_t i : grown) {
@@ -190,9 +191,8 @@ bool Simulation::repair_outgrown_rows() {
       neighbors::repair_rows<2>(cells_, positions(particles_, particles_.size()), search_radii_, n,
                                 repaired_, neighbor_list_);
     }
-    std::vector<std::uint32_t> resum(grown.begin(), grown.end());
     ScopedTimer timer(phase_times_.depth);
-    if (scheme_->sum_depth_of(particles_, neighbor_list_, resum)) return true;
+    if (scheme_->sum_depth_of(particles_, neighbor_list_, grown)) return true;
   }
   return false;
 }
