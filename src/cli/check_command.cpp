@@ -2,8 +2,8 @@
 // its simulation built exactly as `run` does before its first step, so that a scene run would
 // refuse is refused here with the same message; then, instead of the run, a report on standard
 // output: the domain and CRS, the rasters, the particles, the memory, the first time step and a
-// wall-time estimate from a few real steps. Nothing is written: the steps are taken in memory
-// and no output file is opened.
+// wall-time estimate with its band, from the scene and a coarser pilot of it stepped in memory
+// (wall_time_estimate.hpp). Nothing is written: no output file is opened.
 
 #include "swemps/cli/check_command.hpp"
 
@@ -24,21 +24,25 @@
 #include "swemps/boundaries/inflow_line.hpp"
 #include "swemps/cli/output.hpp"
 #include "swemps/cli/output_target.hpp"
+#include "swemps/cli/report_text.hpp"
 #include "swemps/cli/runs.hpp"
 #include "swemps/cli/timing.hpp"
+#include "swemps/cli/wall_time_estimate.hpp"
 #include "swemps/io/hydrograph_csv.hpp"
 #include "swemps/maps/flood_statistics.hpp"
 #include "swemps/scenario/build.hpp"
+#include "swemps/scenario/coarsen.hpp"
 #include "swemps/scenario/memory_check.hpp"
 
 namespace swemps::cli {
 
 namespace {
 
-// The timed steps stop at whichever comes first: enough to average over the costs that do not
-// come every step (sorting by cell), short enough for a check.
-constexpr std::size_t kTimedSteps = 20;
-constexpr double kTimingBudgetS = 3.0;
+// The scene itself is stepped for this much wall time (its window, the whole run if that
+// reaches the end time); a pilot run stops after the second, and its steps so far are carried
+// to the end time.
+constexpr double kWindowS = 5.0;
+constexpr double kPilotBudgetS = 30.0;
 // Without a particle to time (an inflow that let none in within the budget), a rate from
 // docs/performance.md is assumed: 5e5 particle-steps/s per thread, below every rate measured
 // there with the default scheme.
@@ -46,26 +50,6 @@ constexpr double kAssumedRatePerThread = 5e5;
 
 // ---------------------------------------------------------------------------------------------
 // Words and numbers
-
-// 12345 -> "12,345": counts a reader compares at a glance.
-std::string count(double v) {
-  if (!std::isfinite(v)) return "?";
-  const std::string digits = fmt::format("{:.0f}", std::max(0.0, v));
-  std::string out;
-  for (std::size_t k = 0; k < digits.size(); ++k) {
-    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
-    out += digits[k];
-  }
-  return out;
-}
-
-// Four significant digits, without an exponent between 1e-3 and 1e9 (10,800 s, not 1.08e+04).
-std::string num(double v) {
-  const double a = std::abs(v);
-  if (a >= 1e4 && a < 1e9) return fmt::format("{}{}", v < 0.0 ? "-" : "", count(a));
-  if (a == 0.0 || (a >= 1e-3 && a < 1e4)) return fmt::format("{:.4g}", v);
-  return fmt::format("{:.3g}", v);
-}
 
 // A map coordinate to the centimetre, as it would be typed into a scene file.
 std::string coord(double v) {
@@ -77,23 +61,6 @@ std::string coord(double v) {
 
 std::string box(double x0, double x1, double y0, double y1) {
   return fmt::format("[{}, {}] x [{}, {}] m", coord(x0), coord(x1), coord(y0), coord(y1));
-}
-
-std::string duration(double s) {
-  if (s < 60.0) return fmt::format("{:.2g} s", s);
-  if (s < 3600.0) {
-    const auto whole = static_cast<long>(std::lround(s));
-    return fmt::format("{} min {} s", whole / 60, whole % 60);
-  }
-  const auto minutes = static_cast<long>(std::lround(s / 60.0));
-  return fmt::format("{} h {} min", minutes / 60, minutes % 60);
-}
-
-void heading(const std::string& title) { std::printf("\n%s\n", title.c_str()); }
-
-// Labels in one column, so that values line up down a section.
-void row(const std::string& label, const std::string& value) {
-  std::printf("  %-24s %s\n", label.c_str(), value.c_str());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -270,71 +237,125 @@ void time_step_section(const scenario::Scenario& scene, double dt_s, const std::
                                       count(steps_to_end(scene, dt_s)), note));
 }
 
-struct Timing {
-  std::size_t steps = 0;      // timed
-  double particle_steps = 0;  // over the timed steps
-  double seconds = 0.0;
-  double dry_time_s = 0.0;  // simulated time stepped, untimed, before any particle existed
-};
-
-// `step` takes one step and returns the fluid particles it stepped; `fluid` counts them now.
-template <class Step, class Fluid, class Now>
-Timing time_steps(double end_time_s, const Step& step, const Fluid& fluid, const Now& now_s) {
-  Timing t;
-  const auto start = Clock::now();
-  // A scene that starts dry has nothing to time until an inflow lets water in; those steps
-  // cost next to nothing and count against the budget too.
-  while (fluid() == 0 && now_s() < end_time_s && seconds_since(start) < kTimingBudgetS) step();
-  t.dry_time_s = now_s();
-  const auto timed = Clock::now();
-  while (t.steps < kTimedSteps && fluid() > 0 && now_s() < end_time_s &&
-         seconds_since(start) < kTimingBudgetS) {
-    t.particle_steps += static_cast<double>(step());
-    ++t.steps;
-  }
-  t.seconds = seconds_since(timed);
-  return t;
+std::string threads_text() {
+  const int threads = omp_get_max_threads();
+  return fmt::format("{} thread{}", threads, threads == 1 ? "" : "s");
 }
 
-// The run's wall time: the particle-steps of `steps` steps, the count going linearly from the
-// start's to the end's, at the timed rate; plus `per_step_output_s` a step. One line with its
-// assumptions, then what it leaves out.
-void estimate_section(double steps, double dt_s, const Timing& timing, double start_particles,
-                      double end_particles, double per_step_output_s, const std::string& caveat,
-                      bool lower_bound = false) {
-  const int threads = omp_get_max_threads();
-  const bool measured = timing.particle_steps > 0.0 && timing.seconds > 0.0;
-  const double rate = measured ? timing.particle_steps / timing.seconds
-                               : kAssumedRatePerThread * static_cast<double>(threads);
-  const double output_s = steps * per_step_output_s;
-  const double total_s = steps * 0.5 * (start_particles + end_particles) / rate + output_s;
-  heading("Wall-time estimate");
+// Before a stretch of stepping in memory: what it is, shown while it runs.
+void stepping_line(const std::string& what, double budget_s) {
+  std::printf("  %s, stepped in memory (%s at most):\n", what.c_str(), duration(budget_s).c_str());
+  std::fflush(stdout);
+}
+
+std::string reached_text(bool finished, double reached_s, const std::string& short_of_end) {
+  return finished ? std::string("to its end time")
+                  : fmt::format("to t = {} s{}", num(reached_s), short_of_end);
+}
+
+// The estimate, the band around it, and what it was made of.
+void estimate_lines(const WallTimeEstimate& e, double reading_s) {
+  std::printf("  about %s on %s: between %s and %s\n", duration(e.seconds).c_str(),
+              threads_text().c_str(), duration(EstimateBand::kLow * e.seconds).c_str(),
+              duration(EstimateBand::kHigh * e.seconds + EstimateBand::kFixedS).c_str());
+  std::printf("    of which %s stepping, ", duration(e.stepping_s).c_str());
+  if (e.statistics_samples > 0.0) {
+    std::printf("%s for %s samples of the flood statistics, ", duration(e.statistics_s).c_str(),
+                count(e.statistics_samples).c_str());
+  }
+  std::printf("%s reading the scene\n", duration(reading_s).c_str());
+  // Measured, not a correction applied: docs/outputs.md, "Check".
   std::printf(
-      "  %s %s on %d thread%s (%s %.2e particle-steps/s; %s steps at dt = %s s; "
-      "%s -> %s particles)\n",
-      lower_bound ? "at least about" : "about", duration(total_s).c_str(), threads,
-      threads == 1 ? "" : "s",
-      measured ? fmt::format("{} steps timed:", timing.steps).c_str()
-               : "no particle to time: an assumed",
-      rate, count(steps).c_str(), num(dt_s).c_str(), count(start_particles).c_str(),
-      count(end_particles).c_str());
-  if (per_step_output_s > 0.0) {
-    std::printf(
-        "  of which at most %s for the flood statistics, sampled at most every step "
-        "(%s a sample)\n",
-        duration(output_s).c_str(), duration(per_step_output_s).c_str());
+      "  The band is where the runs of the shipped scenes fell around such an estimate; writing "
+      "maps adds to it.\n");
+}
+
+// A pilot run of the scene at the widest factor up to `factor` that builds (lowering it), its
+// particles at the start, for the window it is measured against.
+using PilotRunner =
+    std::function<PilotRun(int& factor, const SceneWindow& window, double& pilot_start)>;
+
+// The wall-time section: the scene stepped in memory for its window; where that does not
+// reach the end time, a pilot run to it, scaled by the window. `start_particles` and
+// `end_particles` (what inflows bring by the end) price the run from the window's rate alone,
+// which sizes the pilot, and stands as a lower bound where no pilot can run.
+void estimate_section(const scenario::Scenario& scene, int dimensions, const Stepper& stepper,
+                      double dt_s, double start_particles, double end_particles,
+                      double map_length_m,
+                      const std::function<double(double)>& seconds_per_sample,
+                      double reading_s, const PilotRunner& pilot_for) {
+  heading("Wall-time estimate");
+  stepping_line("the scene itself", kWindowS);
+  SceneWindow window;
+  try {
+    window = step_window(scene.end_time_s, stepper, map_length_m, kWindowS);
+  } catch (const swe::SimulationError&) {
+    std::printf("\n  The steps broke down at t = %s s: the run would too.\n",
+                num(stepper.time_s()).c_str());
+    throw;
   }
-  if (timing.dry_time_s > 0.0) {
-    std::printf("  The steps to t = %s s, before the first particle came in, were not timed.\n",
-                num(timing.dry_time_s).c_str());
+  std::printf("    %s: %s steps, %s particle-steps in %s\n",
+              reached_text(window.finished, window.until_s, "").c_str(),
+              count(double(window.steps)).c_str(), count(window.particle_steps).c_str(),
+              duration(window.seconds).c_str());
+  // A sample grids the particles of the moment: priced at the run's mean count.
+  const auto mean_particles = [](double particle_steps, double steps) {
+    return steps > 0.0 ? particle_steps / steps : 0.0;
+  };
+  if (window.finished) {
+    const double per_sample_s =
+        seconds_per_sample(mean_particles(window.particle_steps, double(window.steps)));
+    estimate_lines(whole_window(window, per_sample_s, reading_s), reading_s);
+    return;
   }
-  std::printf("  This is an estimate: %s. Reading the scene and writing maps add to it.\n",
-              caveat.c_str());
-  if (lower_bound) {
-    // Measured, not a correction applied: the shipped flood cases (docs/outputs.md, "Check").
+  const double rate = window.measured()
+                          ? window.rate()
+                          : kAssumedRatePerThread * static_cast<double>(omp_get_max_threads());
+  const double steps = steps_to_end(scene, dt_s);
+  const double from_window_s = steps * 0.5 * (start_particles + end_particles) / rate;
+  int factor = pilot_factor(from_window_s, dimensions, kPilotBudgetS);
+  try {
+    double pilot_start = 0.0;
+    const PilotRun run = pilot_for(factor, window, pilot_start);
     std::printf(
-        "  A flood that speeds up shortens the time step: the shipped valley floods ran 3.7 "
-        "and 8 times their estimate.\n");
+        "    %s: %s steps, %s particle-steps in %s (%s s a step and %s s a "
+        "particle-step)\n",
+        reached_text(run.finished, run.reached_s,
+                     ", where its time ran out (carried on to the end time in "
+                     "proportion)")
+            .c_str(),
+        count(double(run.steps)).c_str(), count(run.particle_steps).c_str(),
+        duration(run.seconds).c_str(), fmt::format("{:.2g}", run.seconds_per_step).c_str(),
+        fmt::format("{:.2g}", run.seconds_per_particle_step).c_str());
+    const double f = static_cast<double>(factor);
+    const double start_ratio = start_particles > 0.0 && pilot_start > 0.0
+                                   ? start_particles / pilot_start
+                                   : std::pow(f, dimensions);
+    const auto unpriced = scale_pilot(run, start_ratio, 0.0, reading_s);
+    const double per_sample_s =
+        seconds_per_sample(mean_particles(unpriced.particle_steps, unpriced.steps));
+    const auto e = scale_pilot(run, start_ratio, per_sample_s, reading_s);
+    std::printf(
+        "    scaled to the scene: %.3g times the pilot's steps, %.3g times its particles "
+        "a step, %.3g times its cost (%s): %s steps, %s particle-steps\n",
+        e.step_ratio, e.particle_ratio, e.cost_ratio,
+        e.calibrated
+            ? fmt::format("steps and cost as the scene's own to t = {} s", num(window.until_s))
+                  .c_str()
+            : "steps as the first stable steps give them",
+        count(e.steps).c_str(), count(e.particle_steps).c_str());
+    estimate_lines(e, reading_s);
+  } catch (const std::exception& e) {
+    std::printf(
+        "  at least about %s on %s (%s steps at dt = %s s, %s -> %s particles, at %s "
+        "particle-steps/s)\n",
+        duration(from_window_s + reading_s).c_str(), threads_text().c_str(), count(steps).c_str(),
+        num(dt_s).c_str(), count(start_particles).c_str(), count(end_particles).c_str(),
+        fmt::format("{:.2e}", rate).c_str());
+    std::printf(
+        "  No pilot run could be made (at %d times the spacing: %s); a flood that speeds "
+        "up shortens the time step, and the shipped floods took up to 8 times this.\n",
+        factor, e.what());
   }
 }
 
@@ -393,15 +414,15 @@ double particles_section(const scenario::Scenario& scene, swe::Simulation& sim) 
   return inflow_particles;
 }
 
-// What a run does at most every step besides the step: grid the state and add it to the flood
+// What a run does at each sample of its flood statistics: grid the state and add it to the
 // statistics (maps and series are written at their times only, and left out). Timed on the
-// state the timed steps reached, the faster of two (the first pays for allocations); the
-// gridding, which visits each particle's cells, scaled to `mean_particles`.
-double statistics_step_s(const scenario::Scenario& scene, const scenario::Terrain& terrain,
+// state the scene's window reached, the faster of two (the first pays for allocations); the
+// gridding, which visits each particle's cells, scaled from the particles there to
+// `mean_particles`, the run's mean.
+double statistics_step_s(const scenario::Scenario& scene, const maps::CellAverages& cells,
                          swe::Simulation& sim, const swe::RegularGrid& grid,
                          double mean_particles) {
   sim.refresh();
-  const auto cells = scenario::map_reader(scene, terrain, grid);
   maps::FloodStatistics statistics(
       grid.nx * grid.ny,
       {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use});
@@ -415,11 +436,61 @@ double statistics_step_s(const scenario::Scenario& scene, const scenario::Terrai
     update_s = std::min(update_s, seconds_since(started));
   }
   const double now = static_cast<double>(sim.particles().fluid_count());
-  return update_s + gridding_s * (now > 0.0 ? std::max(1.0, mean_particles / now) : 1.0);
+  return update_s + gridding_s * (now > 0.0 && mean_particles > 0.0 ? mean_particles / now : 1.0);
+}
+
+// The pilot's simulation at the widest factor up to `factor` its scene builds at, lowering
+// `factor` to it: a wider lattice can leave a lake's fill point dry or a tank's side short of
+// a whole spacing (factor 1 is the scene itself, which has built).
+template <class Build>
+auto build_pilot(const scenario::Scenario& scene, int& factor, const Build& build) {
+  for (;; --factor) {
+    try {
+      return build(scenario::coarsened(scene, factor));
+    } catch (const scenario::ScenarioError&) {
+      if (factor <= 1) throw;
+    }
+  }
+}
+
+// The scene's simulation as the estimate steps it: landing on each output time, as a run does.
+Stepper swe_stepper(swe::Simulation& sim, const scenario::Scenario& scene) {
+  const double gravity = scene.numerics.gravity_m_s2;
+  return {[&sim, &scene] {
+            const std::size_t before = sim.particle_steps();
+            double target = scene.end_time_s;
+            for (const double t : scene.output.times_s) {
+              if (!sim.reached(t)) {
+                target = std::min(target, t);
+                break;
+              }
+            }
+            sim.step_towards(target);
+            return sim.particle_steps() - before;
+          },
+          [&sim] { return sim.particles().fluid_count(); }, [&sim] { return sim.time(); },
+          [&sim, gravity] {
+            sim.refresh();  // the depths the run's statistics see (cached for the next step)
+            const auto& p = sim.particles();
+            double fastest = 0.0;
+            for (std::size_t i = 0; i < p.fluid_count(); ++i) {
+              fastest = std::max(fastest, std::hypot(p.u[i], p.v[i]) +
+                                              std::sqrt(gravity * std::max(p.depth[i], 0.0)));
+            }
+            return fastest;
+          },
+          [&sim, &scene] {
+            for (const double t : scene.output.times_s) {
+              if (std::abs(sim.time() - t) <= 1e-9 * std::max(1.0, t)) return true;
+            }
+            return false;
+          }};
 }
 
 void check_swe(const scenario::Scenario& scene, const Options& options) {
+  const auto reading = Clock::now();
   auto built = scenario::build(scene);  // refuses a scene that does not fit in memory
+  const double reading_s = seconds_since(reading);
   auto& sim = built.simulation;
   const auto grid = scenario::output_grid(scene, built.terrain);
   const bool seed = scene.numerics.scheme == swe::SchemeKind::seed;
@@ -439,39 +510,56 @@ void check_swe(const scenario::Scenario& scene, const Options& options) {
   time_step_section(scene, dt_s,
                     scene.inflows.empty() ? "" : " (a lower bound: inflows add faster water)");
 
-  Timing timing;
-  try {
-    timing = time_steps(
-        scene.end_time_s,
-        [&] {
-          const std::size_t before = sim.particle_steps();
-          sim.step_towards(scene.end_time_s);
-          return sim.particle_steps() - before;
-        },
-        [&] { return sim.particles().fluid_count(); }, [&] { return sim.time(); });
-  } catch (const swe::SimulationError&) {
-    std::printf("\n  The timed steps broke down at t = %s s: the run would too.\n",
-                num(sim.time()).c_str());
-    throw;
-  }
   // The count the inflows reach, from their volume over the run.
-  const double end = std::max(start + inflow_particles, double(sim.particles().fluid_count()));
-  std::string caveat = "the time step changes as the water moves";
-  if (scene.splitting) caveat += ", and splitting may add particles beyond these";
-  if (!scene.inflows.empty()) caveat += "; the particles inflows add are counted from their volume";
-  estimate_section(steps_to_end(scene, dt_s), dt_s, timing, start, end,
-                   statistics_step_s(scene, built.terrain, sim, grid, 0.5 * (start + end)), caveat,
-                   !scene.inflows.empty());
+  const double end = start + inflow_particles;
+  const auto cells = scenario::map_reader(scene, built.terrain, grid);
+  estimate_section(
+      scene, 2, swe_stepper(sim, scene), dt_s, start, end, cells.resolved_length_m(),
+      [&](double mean_particles) {
+        return statistics_step_s(scene, cells, sim, grid, mean_particles);
+      },
+      reading_s,
+      [&](int& factor, const SceneWindow& window, double& pilot_start) {
+        auto pilot = build_pilot(scene, factor, [](const scenario::Scenario& coarse) {
+          return scenario::build(coarse).simulation;
+        });
+        stepping_line(fmt::format("a pilot run, the scene at {} times its spacing", factor),
+                      kPilotBudgetS);
+        pilot_start = static_cast<double>(pilot.particles().fluid_count());
+        const PilotSetup setup{factor,
+                               pilot.stable_time_step(),
+                               dt_s,
+                               scene.end_time_s,
+                               cells.resolved_length_m(),
+                               kPilotBudgetS,
+                               window};
+        return run_pilot(setup, swe_stepper(pilot, scene));
+      });
 }
 
 // ---------------------------------------------------------------------------------------------
 // Navier-Stokes
 
 template <int Dim>
+Stepper ns_stepper(ns::Simulation<Dim>& sim, double end_time_s) {
+  return {[&sim, end_time_s] {
+            const std::size_t fluid = sim.particles().fluid;
+            sim.advance(std::min(sim.stable_time_step(), end_time_s - sim.time()));
+            return fluid;
+          },
+          [&sim] { return sim.particles().fluid; },
+          [&sim] { return sim.time(); },
+          {},
+          {}};
+}
+
+template <int Dim>
 void check_ns(const scenario::Scenario& scene, const Options& options) {
+  const auto reading = Clock::now();
   const auto terrain = scenario::read_terrain(scene);
   const auto tank = scenario::ns_tank<Dim>(scene);
   auto sim = scenario::make_ns_simulation<Dim>(scene);  // refuses what does not fit in memory
+  const double reading_s = seconds_since(reading);
   const auto grid = scenario::output_grid(scene, terrain);
   scene_section(scene, options, grid,
                 Dim == 2 ? "Navier-Stokes, 2D x-z section" : "Navier-Stokes, 3D");
@@ -495,17 +583,21 @@ void check_ns(const scenario::Scenario& scene, const Options& options) {
   const double dt_s = sim.stable_time_step();
   time_step_section(scene, dt_s, "");
 
-  const auto timing = time_steps(
-      scene.end_time_s,
-      [&] {
-        const std::size_t fluid = sim.particles().fluid;
-        sim.advance(std::min(sim.stable_time_step(), scene.end_time_s - sim.time()));
-        return fluid;
-      },
-      [&] { return sim.particles().fluid; }, [&] { return sim.time(); });
-  estimate_section(steps_to_end(scene, dt_s), dt_s, timing, start, start, 0.0,
-                   "the time step shrinks as the water speeds up, and the Poisson solve takes "
-                   "more iterations as the flow develops");
+  estimate_section(
+      scene, Dim, ns_stepper(sim, scene.end_time_s), dt_s, start, start, 0.0,
+      [](double) { return 0.0; },
+      reading_s,
+      [&](int& factor, const SceneWindow& window, double& pilot_start) {
+        auto pilot = build_pilot(scene, factor, [](const scenario::Scenario& coarse) {
+          return scenario::make_ns_simulation<Dim>(coarse);
+        });
+        stepping_line(fmt::format("a pilot run, the scene at {} times its spacing", factor),
+                      kPilotBudgetS);
+        pilot_start = static_cast<double>(pilot.particles().fluid);
+        const PilotSetup setup{
+            factor, pilot.stable_time_step(), dt_s, scene.end_time_s, 0.0, kPilotBudgetS, window};
+        return run_pilot(setup, ns_stepper(pilot, scene.end_time_s));
+      });
 }
 
 }  // namespace
