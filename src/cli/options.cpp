@@ -38,7 +38,7 @@ Commands:
   check     everything a run checks before its first step, and a report: the domain, the
             CRS, each raster's extent, cells, range and nodata, the particles, the memory,
             the first time step and an estimate of the run's wall time with its band (the
-            scene and a coarser pilot stepped in memory, half a minute at most); nothing is
+            scene and a coarser pilot stepped in memory, 35 s at most); nothing is
             written
   export    from a run's netCDF result: GeoTIFF maps of its whole-run statistics and
             hazard classes (PREFIX_<map>.tif, PREFIX the result without .nc) and the gauge
