@@ -26,6 +26,7 @@
 #include "swemps/cli/output_target.hpp"
 #include "swemps/cli/report_text.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/statistics_sampling.hpp"
 #include "swemps/cli/timing.hpp"
 #include "swemps/cli/wall_time_estimate.hpp"
 #include "swemps/io/hydrograph_csv.hpp"
@@ -471,13 +472,7 @@ Stepper swe_stepper(swe::Simulation& sim, const scenario::Scenario& scene) {
           [&sim] { return sim.particles().fluid_count(); }, [&sim] { return sim.time(); },
           [&sim, gravity] {
             sim.refresh();  // the depths the run's statistics see (cached for the next step)
-            const auto& p = sim.particles();
-            double fastest = 0.0;
-            for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-              fastest = std::max(fastest, std::hypot(p.u[i], p.v[i]) +
-                                              std::sqrt(gravity * std::max(p.depth[i], 0.0)));
-            }
-            return fastest;
+            return fastest_wave_m_s(sim.particles(), gravity);
           },
           [&sim, &scene] {
             for (const double t : scene.output.times_s) {

@@ -17,6 +17,7 @@
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/restart.hpp"
 #include "swemps/cli/runs.hpp"
+#include "swemps/cli/statistics_sampling.hpp"
 #include "swemps/cli/stop_signals.hpp"
 #include "swemps/cli/timing.hpp"
 #include "swemps/io/checkpoint.hpp"
@@ -150,8 +151,6 @@ class SweOutput {
   const std::filesystem::path& partial_path() const { return file_.partial_path(); }
 
  private:
-  static constexpr double kMapCourant = 0.5;
-
   // Until the next statistics sample: kMapCourant times the shortest length the maps resolve
   // (CellAverages::resolved_length_m: a cell, or the finest particle spacing where cells are
   // finer), at the fastest wave speed |u| + sqrt(g h) of any particle; 0 (the next step)
@@ -161,11 +160,7 @@ class SweOutput {
   // 758 samples instead of 1,448, and the maximum-depth map within 0.58 mm of the one sampled
   // at every half cell (0.6 % of the deepest water; 5 um on average).
   double statistics_interval(const particles::SweParticles& p) const {
-    double fastest = 0.0;
-    for (std::size_t i = 0; i < p.fluid_count(); ++i) {
-      const double c = std::hypot(p.u[i], p.v[i]) + std::sqrt(gravity_ * std::max(p.depth[i], 0.0));
-      fastest = std::max(fastest, c);
-    }
+    const double fastest = fastest_wave_m_s(p, gravity_);
     if (!(fastest > 0.0)) return 0.0;
     return kMapCourant * cells_.resolved_length_m() / fastest;
   }

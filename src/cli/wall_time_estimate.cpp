@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "swemps/cli/statistics_sampling.hpp"
 #include "swemps/cli/timing.hpp"
 
 namespace swemps::cli {
@@ -12,10 +13,6 @@ namespace {
 // pilot_factor: the factors it chooses between (scale_pilot's measurements say why no wider).
 constexpr int kFinerFactor = 2;
 constexpr int kWiderFactor = 3;
-
-// The run's statistics sample when a wave could have crossed this share of the length the
-// maps resolve (swe_run.cpp, kMapCourant).
-constexpr double kMapCourant = 0.5;
 
 // The window's ratios need this many of the pilot's steps in it.
 constexpr std::size_t kWindowPilotSteps = 10;
