@@ -1,5 +1,9 @@
 #include "swemps/neighbors/cell_list.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 
@@ -26,17 +30,41 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double search_radius, 
     throw std::length_error("cell list: too many points for 32-bit indices");
   }
 
+  // The bounds, in parallel over fixed chunks (a minimum and a maximum are the same in any
+  // order). Every value is checked: a NaN compares false and would slip past min/max.
   std::array<double, Dim> lo, hi;
   lo.fill(0.0);
   hi.fill(0.0);
   if (n > 0) {
-    for (int d = 0; d < Dim; ++d) {
-      lo[d] = hi[d] = coords[d][0];
-      for (const double c : coords[d]) {
-        // Every value is checked: a NaN compares false and would slip past min/max.
-        if (!std::isfinite(c)) throw std::domain_error("cell list: non-finite coordinate");
-        lo[d] = std::min(lo[d], c);
-        hi[d] = std::max(hi[d], c);
+    std::array<std::array<double, Dim>, reduction_chunks> chunk_lo, chunk_hi;
+    std::array<std::uint8_t, reduction_chunks> broken{};
+    std::array<std::uint8_t, reduction_chunks> used{};
+    parallel_chunks(n, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+      if (begin == end) return;
+      bool bad = false;
+      for (int d = 0; d < Dim; ++d) {
+        double low = coords[d][begin], high = low;
+        for (std::size_t i = begin; i < end; ++i) {
+          const double c = coords[d][i];
+          bad |= !std::isfinite(c);
+          low = std::min(low, c);
+          high = std::max(high, c);
+        }
+        chunk_lo[chunk][d] = low;
+        chunk_hi[chunk][d] = high;
+      }
+      broken[chunk] = bad ? 1 : 0;
+      used[chunk] = 1;
+    });
+    for (std::size_t chunk = 0; chunk < reduction_chunks; ++chunk) {
+      if (broken[chunk]) throw std::domain_error("cell list: non-finite coordinate");
+    }
+    for (int d = 0; d < Dim; ++d) lo[d] = hi[d] = coords[d][0];
+    for (std::size_t chunk = 0; chunk < reduction_chunks; ++chunk) {
+      if (!used[chunk]) continue;
+      for (int d = 0; d < Dim; ++d) {
+        lo[d] = std::min(lo[d], chunk_lo[chunk][d]);
+        hi[d] = std::max(hi[d], chunk_hi[chunk][d]);
       }
     }
   }
@@ -79,12 +107,16 @@ void CellList<Dim>::build(const Coordinates<Dim>& coords, double search_radius, 
     }
     cell_of[i] = static_cast<std::uint32_t>(index);
   });
+  // Each cell's count, summed to its end, then the points placed from the last backwards,
+  // each at its cell's end less one: the ends come down to the starts, and points keep their
+  // order within a cell, with no second array of cells to count with.
   cell_start_.assign(total_cells + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of[i] + 1];
-  for (std::size_t c = 0; c < total_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of[i]];
+  for (std::size_t c = 1; c < total_cells; ++c) cell_start_[c] += cell_start_[c - 1];
+  cell_start_[total_cells] = static_cast<std::uint32_t>(n);
   order_.resize(n);
-  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i) order_[fill[cell_of[i]]++] = static_cast<std::uint32_t>(i);
+  for (std::size_t i = n; i-- > 0;)
+    order_[--cell_start_[cell_of[i]]] = static_cast<std::uint32_t>(i);
   for (int d = 0; d < Dim; ++d) {
     cell_ordered_[d].resize(n);
     parallel_for(n, [&](std::size_t k) { cell_ordered_[d][k] = coords[d][order_[k]]; });

@@ -156,21 +156,25 @@ void gather_nodes(const BedLattice& lattice, double x, double y, double h, NodeB
     const double inverse_h = 1.0 / h;
     const double w_scale = a * K::sigma() * inverse_h * inverse_h;
     const double slope_scale = w_scale * inverse_h;
-    bool all_positive = true;
-#pragma omp simd reduction(&& : all_positive)
+    // Raw pointers and an int flag: through the vectors' own accessors, and with a bool
+    // reduction, the loop did not vectorise (the vectors' starts were read again at each node).
+    const double *ox = b.ox.data(), *oy = b.oy.data();
+    double *w = b.w.data(), *wx = b.wx.data(), *wy = b.wy.data();
+    int weightless = 0;
+#pragma omp simd reduction(| : weightless)
     for (std::size_t k = 0; k < count; ++k) {
-      const double r = std::sqrt(b.ox[k] * b.ox[k] + b.oy[k] * b.oy[k]);
+      const double r = std::sqrt(ox[k] * ox[k] + oy[k] * oy[k]);
       const double q = r * inverse_h;
       const double weight = w_scale * K::shape(q);
       // grad_x W(x - x_k) = W'(r) (x - x_k) / r with x - x_k = -(ox, oy), W' <= 0.
       const double slope = r > 0.0 ? -slope_scale * K::shape_slope(q) / r : 0.0;
-      b.w[k] = weight;
-      b.wx[k] = slope * b.ox[k];
-      b.wy[k] = slope * b.oy[k];
-      all_positive = all_positive && weight > 0.0;
+      w[k] = weight;
+      wx[k] = slope * ox[k];
+      wy[k] = slope * oy[k];
+      weightless |= weight > 0.0 ? 0 : 1;
     }
     // A node at the support's edge to round-off weighs nothing and is not part of it.
-    if (!all_positive) b.keep_only([&](std::size_t k) { return b.w[k] > 0.0; });
+    if (weightless != 0) b.keep_only([&](std::size_t k) { return b.w[k] > 0.0; });
   } else {  // see subdivision()
     lattice.for_each_fine_point_within(x, y, 2.0 * h, m, add);
   }
@@ -321,20 +325,25 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
   const std::size_t count = b.z.size();
   double w = 0.0, wz = 0.0, mx = 0.0, my = 0.0, gx = 0.0, gy = 0.0, zx = 0.0, zy = 0.0;
   double jxx = 0.0, jxy = 0.0, jyx = 0.0, jyy = 0.0;
+  // A dry node's weights times 0 rather than a branch (whether a node is wet follows no
+  // pattern a branch predictor learns): adding the zeros leaves every sum as it was, bit for
+  // bit, and the sums keep the nodes' order.
+  const char* flag = wet ? wet->data() : nullptr;
   for (std::size_t k = 0; k < count; ++k) {
-    if (wet && !(*wet)[k]) continue;
-    w += b.w[k];
-    wz += b.w[k] * b.z[k];
-    mx += b.w[k] * b.ox[k];
-    my += b.w[k] * b.oy[k];
-    gx += b.wx[k];
-    gy += b.wy[k];
-    zx += b.wx[k] * b.z[k];
-    zy += b.wy[k] * b.z[k];
-    jxx += b.wx[k] * b.ox[k];
-    jxy += b.wx[k] * b.oy[k];
-    jyx += b.wy[k] * b.ox[k];
-    jyy += b.wy[k] * b.oy[k];
+    const double on = flag ? static_cast<double>(flag[k]) : 1.0;
+    const double wk = on * b.w[k], wxk = on * b.wx[k], wyk = on * b.wy[k];
+    w += wk;
+    wz += wk * b.z[k];
+    mx += wk * b.ox[k];
+    my += wk * b.oy[k];
+    gx += wxk;
+    gy += wyk;
+    zx += wxk * b.z[k];
+    zy += wyk * b.z[k];
+    jxx += wxk * b.ox[k];
+    jxy += wxk * b.oy[k];
+    jyx += wyk * b.ox[k];
+    jyy += wyk * b.oy[k];
   }
   if (!(w > 0.0)) return WetSetFit::undetermined;
   const double axx = jxx - gx * mx / w, axy = jxy - gx * my / w;
@@ -352,17 +361,19 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
   if (!std::isfinite(sx) || !std::isfinite(sy)) return WetSetFit::undetermined;
   slope = {sx, sy};
   if (level_at_particle) *level_at_particle = level;
+  // The set the plane wets, against the set it was solved on, in one pass that vectorises
+  // (no branch, no early exit).
   if (wetted) wetted->resize(count);
-  bool same = true;
+  char* out = wetted ? wetted->data() : nullptr;
+  const double *z = b.z.data(), *ox = b.ox.data(), *oy = b.oy.data();
+  int changed = 0;
+#pragma omp simd reduction(| : changed)
   for (std::size_t k = 0; k < count; ++k) {
-    const bool wet_here = b.z[k] - sx * b.ox[k] - sy * b.oy[k] < level;
-    if (wetted) (*wetted)[k] = wet_here ? 1 : 0;
-    if (wet_here != (wet ? static_cast<bool>((*wet)[k]) : true)) {
-      same = false;
-      if (!wetted) break;  // the set is all that is asked for
-    }
+    const int wet_here = z[k] - sx * ox[k] - sy * oy[k] < level ? 1 : 0;
+    if (out) out[k] = static_cast<char>(wet_here);
+    changed |= wet_here ^ (flag ? static_cast<int>(flag[k]) : 1);
   }
-  return same ? WetSetFit::exact : WetSetFit::other_set;
+  return changed == 0 ? WetSetFit::exact : WetSetFit::other_set;
 }
 
 // The plane of a partly dry support by its wet set alone: from a first guess of the wet set in
@@ -702,11 +713,12 @@ double level_holding(std::span<const double> z, std::span<const double> w, doubl
   // this eta is at or above the root, and Newton's steps from there descend onto it.
   double level = (depth + weighted_z) / weight;
   for (int step = 0; step < kMaxLevelSteps; ++step) {
+    // A dry node's weight times 0, not a branch (as in plane_on_wet_set): the same sums.
     double held = 0.0, wet_weight = 0.0;
     for (std::size_t k = 0; k < z.size(); ++k) {
-      const bool wet = z[k] < level;
-      held += wet ? w[k] * (level - z[k]) : 0.0;
-      wet_weight += wet ? w[k] : 0.0;
+      const double wet_w = static_cast<double>(z[k] < level) * w[k];
+      held += wet_w * (level - z[k]);
+      wet_weight += wet_w;
     }
     const double excess = held - depth;
     if (!(excess > kLevelTolerance * depth) || !(wet_weight > 0.0)) break;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "swemps/neighbors/parallel.hpp"
+#include "swemps/particles/resize_with_room.hpp"
 #include "swemps/swe/particle_shifting.hpp"
 
 namespace swemps::swe {
@@ -120,10 +121,10 @@ void surface_acceleration_with(const particles::SweParticles& p,
                                std::span<double> ay, ConcentrationField* field) {
   if (field != nullptr) {
     for (auto* v : {&field->concentration, &field->gradient_x, &field->gradient_y})
-      v->resize(p.fluid_count());
+      particles::resize_with_room(*v, p.fluid_count());
   }
   // c = sqrt(g d) once per particle (ghosts included), not once per pair.
-  celerity.resize(p.size());
+  particles::resize_with_room(celerity, p.size());
   parallel_for(p.size(), [&](std::size_t k) { celerity[k] = std::sqrt(g * p.depth[k]); });
 #pragma omp parallel if (p.fluid_count() > static_cast<std::size_t>(parallel_threshold))
   {

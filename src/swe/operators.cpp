@@ -211,6 +211,11 @@ void depth_gradient(GradientVariant variant, SweParticles& p, const neighbors::N
   }
 }
 
+double particle_time_step(const SweParticles& p, std::size_t i, double gravity_m_s2, double cfl) {
+  const double speed = std::sqrt(gravity_m_s2 * p.depth[i]) + distance(p.u[i], p.v[i]);
+  return cfl * std::sqrt(p.area[i]) / speed;
+}
+
 TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, double cfl) {
   // The first particle with the smallest step, or the first whose step is NaN (it must surface
   // as the limiting particle, not be skipped by '<'). Found per chunk in parallel, then the
@@ -223,10 +228,8 @@ TimeStepLimit stable_time_step(const SweParticles& p, double gravity_m_s2, doubl
   std::array<TimeStepLimit, reduction_chunks> chunk_limit;
   chunk_limit.fill({std::numeric_limits<double>::infinity(), 0});
   parallel_chunks(p.fluid_count(), [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      const double speed = std::sqrt(gravity_m_s2 * p.depth[i]) + distance(p.u[i], p.v[i]);
-      take(chunk_limit[chunk], cfl * std::sqrt(p.area[i]) / speed, i);
-    }
+    for (std::size_t i = begin; i < end; ++i)
+      take(chunk_limit[chunk], particle_time_step(p, i, gravity_m_s2, cfl), i);
   });
   TimeStepLimit limit{std::numeric_limits<double>::infinity(), 0};
   for (const TimeStepLimit& c : chunk_limit) take(limit, c.dt_s, c.particle);

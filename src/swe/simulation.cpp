@@ -11,6 +11,7 @@
 
 #include "scoped_timer.hpp"
 #include "swemps/neighbors/parallel.hpp"
+#include "swemps/particles/resize_with_room.hpp"
 
 namespace swemps::swe {
 
@@ -501,8 +502,8 @@ void Simulation::run_effects(Stage stage, double dt_s) {
 void Simulation::advance(double dt_s) {
   refresh();
   const std::size_t n = particles_.fluid_count();
-  accel_x_.resize(n);
-  accel_y_.resize(n);
+  particles::resize_with_room(accel_x_, n);
+  particles::resize_with_room(accel_y_, n);
   {
     ScopedTimer timer(phase_times_.gradient);
     scheme_->surface_acceleration(particles_, neighbor_list_, settings_.gravity_m_s2, accel_x_,
@@ -520,14 +521,14 @@ void Simulation::advance(double dt_s) {
   bool shifted = false;
   {
     ScopedTimer timer(phase_times_.shift);
-    shift_x_.resize(n);
-    shift_y_.resize(n);
+    particles::resize_with_room(shift_x_, n);
+    particles::resize_with_room(shift_y_, n);
     shifted = scheme_->regularising_shift(particles_, neighbor_list_, dt_s, shift_x_, shift_y_);
   }
   {
     ScopedTimer timer(phase_times_.integrate);
-    old_x_.resize(n);
-    old_y_.resize(n);
+    particles::resize_with_room(old_x_, n);
+    particles::resize_with_room(old_y_, n);
     // The move also tells whether every new position is finite (refresh() says why that is
     // enough): a flag per chunk, ORed without a branch. A reflection at a wall (below) keeps a
     // finite position finite.

@@ -95,12 +95,37 @@ class CellAverages {
   };
   static constexpr std::size_t kOffMap = static_cast<std::size_t>(-1);
   using Point = std::array<double, 2>;
-  // Appends fluid particle j's shares, which add up to 1. `ghosts`: its wall ghosts' indices;
-  // `images`: scratch space.
+  // One thread's scratch space for shares_of: the kernel's centres (the particle and its
+  // images), and the kernel's values along one row of sub-points.
+  struct Scratch {
+    std::vector<Point> images;
+    std::vector<double> row_weight;
+  };
+  // The sub-points [first, last] along each axis that a particle's support may reach.
+  struct SubRange {
+    long i0, i1, k0, k1;
+  };
+  // Appends fluid particle j's shares, which add up to 1. `ghosts`: its wall ghosts' indices.
   template <class Kernel>
   void shares_of(const particles::SweParticles& p, std::size_t j,
-                 std::span<const std::uint32_t> ghosts, const Kernel& kernel,
-                 std::vector<Point>& images, std::vector<Share>& shares) const;
+                 std::span<const std::uint32_t> ghosts, const Kernel& kernel, Scratch& scratch,
+                 std::vector<Share>& shares) const;
+  // The weights of a particle whose kernel has no image (no wall ghost, no edge within reach),
+  // row by row over the sub-points inside its support; returns their total.
+  template <class Kernel>
+  double unmirrored_weights(const particles::SweParticles& p, std::size_t j, const SubRange& range,
+                            Scratch& scratch, std::vector<Share>& shares) const;
+  // The cell of sub-point (si, sk) (kOffMap: not on the map), and a sub-point's weight added
+  // to that cell's share in `shares` from index `first` on.
+  std::size_t cell_of_sub_point(long si, long sk, bool row_on_map) const;
+  static void add_share(std::size_t cell, double weight, std::size_t first,
+                        std::vector<Share>& shares) {
+    if (shares.size() > first && shares.back().cell == cell) {
+      shares.back().fraction += weight;  // the next sub-point of the same cell
+    } else {
+      shares.push_back({cell, weight});
+    }
+  }
   double sub_bed(long si, long sk) const;
 
   swe::RegularGrid grid_;

@@ -60,6 +60,9 @@ struct TimeStepLimit {
   std::size_t particle;
 };
 TimeStepLimit stable_time_step(const particles::SweParticles& p, double gravity_m_s2, double cfl);
+// Particle i's own step by eq 13 (the minimum over the fluid particles is stable_time_step()).
+double particle_time_step(const particles::SweParticles& p, std::size_t i, double gravity_m_s2,
+                          double cfl);
 
 // Depth at arbitrary points, h(x) = sum_j V_j W(|x - x_j|, h_j), over the fluid particles,
 // each with its own radius: the summation of eq 7 (and of the conservative scheme), so the
