@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
+#include <vector>
 
 #include "swemps/neighbors/parallel.hpp"
 
@@ -19,6 +20,13 @@ constexpr double kCoincident = 1e-12;
 constexpr int kFewestNeighbours = 3;
 constexpr double kFlattestSpread = 4e-3;
 
+// One row's pairs, gathered: the kernels' values of every pair in one pass that vectorises,
+// then the sums in the row's order, as before (so the result is the same to the bit). Why:
+// pair by pair, each kernel with its divisions, this term was a tenth of Thacker's run.
+struct RowScratch {
+  std::vector<double> dx, dy, r, w, dw;
+};
+
 // G_i of the header: the gradient g minimising sum_j w_ij (eta_j - eta_i - g . x_ij)^2 over
 // fluid neighbours with a level, x_ij = x_j - x_i, with the weights of the depth sum's own
 // gradient, w_ij = A_j |W'(r_ij, h_i)| / r_ij (the corrected kernel gradient of the levels in
@@ -31,13 +39,6 @@ constexpr double kFlattestSpread = 4e-3;
 // arrangement's. With the kernel's values as weights, W(r_ij, h_i), e_i carried the difference
 // of two smoothings of the front, and the thin film of the hard cases gained 2.1 % of its
 // energy (0.6 % without the correction, 0.3 % with these weights; docs/method.md).
-// One row's pairs, gathered: the kernels' values of every pair in one pass that vectorises,
-// then the sums in the row's order, as before (so the result is the same to the bit). Why:
-// pair by pair, each kernel with its divisions, this term was a tenth of Thacker's run.
-struct RowScratch {
-  std::vector<double> dx, dy, r, w, dw;
-};
-
 template <class K>
 bool level_gradient(const particles::SweParticles& p, const neighbors::NeighborList& neighbors,
                     const ParticlePlanes& planes, std::size_t i, double* average_weight,
