@@ -24,16 +24,26 @@ constexpr int kMaxLevelSteps = 1000;
 // The level is exact once the wet set stops changing; round-off leaves an excess of about
 // 1e-16 of the depth, which this stops on.
 constexpr double kLevelTolerance = 1e-13;
-// The smallest eigenvalue of the Jacobian J that a Newton step on the plane's slope divides
-// by: a full support has J = I, a half support (a straight shore) about 1/2 across the shore.
-// A particle whose wet nodes lie almost on a line has J near zero across the line, and
-// dividing by it would turn round-off into slope; the next step corrects what the floor holds
-// back.
-constexpr double kSmallestJacobian = 0.5;
-// The smallest eigenvalue of the same symmetric part for the exact solve on a settled wet set
-// (plane_on_wet_set): there the solve is the root itself, not a step towards it, and the floor
-// only keeps out wet sets that hold no plane (nodes almost on a line).
-constexpr double kSmallestSettledJacobian = 0.1;
+// The eigenvalues of the Jacobian J that a Newton step on the plane's slope divides by, and
+// that the exact solve on a wet set (plane_on_wet_set) needs. J scales with the share of the
+// support that is wet: I for a full support, about 1/2 across a straight shore, 0.03-0.5 where
+// the wet nodes cover a corner of a wide support on a hillside (measured on the valley flood).
+// What holds no plane is a J small in one direction against the other (wet nodes almost on a
+// line, where dividing would turn round-off into slope), so a partly wet support's eigenvalues
+// are floored at a fraction of the largest, kWetSetConditioning, and at kSmallestWetJacobian
+// when even the largest is that small (a node or two).
+//
+// Why relative: absolute floors of 0.5 (the steps) and 0.1 (the exact solve) held back every
+// step of such a corner's plane, as if its J were I: on the valley flood's first 90 minutes
+// 126,000 planes converged linearly (the residual falling about 10 % a step) into the cap of
+// kMaxPlaneSteps, ending an order of magnitude short of the root, and took 30 % of this term's
+// time. Floored at 1/50 of the largest they reach the root in 5 to 7 steps or settle on their
+// wet set at once (docs/performance.md, "Third lever").
+constexpr double kWetSetConditioning = 0.02;
+constexpr double kSmallestWetJacobian = 1e-3;
+// The plane of every node (an interior particle's, J about I) needs J's smallest eigenvalue at
+// least this; a support that is not all wet goes on to its wet set.
+constexpr double kSmallestFullJacobian = 0.5;
 // A jump to the next node that a tilting plane wets goes this fraction past it, so that the
 // node is wet at the next step.
 constexpr double kBreakpointMargin = 1e-9;
@@ -44,6 +54,10 @@ constexpr double kBreakpointMargin = 1e-9;
 constexpr int kMaxPlaneSteps = 30;
 // Tries of wet_set_slope before Newton's steps take over.
 constexpr int kWetSetTries = 4;
+// A step halved this many times in a row without lowering the residual ends the search at the
+// slope it was taken from, where the residual is least along it (a film held by three nodes, on
+// the valley flood): more halvings only walked the step towards nothing, thirty times over.
+constexpr int kMaxHalvings = 8;
 // The slope is settled when a step moves it by less than this (a slope, dimensionless), or
 // when the depth gradient is held to round-off (this times depth / h).
 constexpr double kSlopeTolerance = 1e-10;
@@ -218,6 +232,28 @@ bool drop_ground_beyond_rims(const std::vector<char>& occupied, std::size_t own_
   const auto box_row = [&](std::size_t k) { return b.row[k] - row0; };
   for (std::size_t k = 0; k < count; ++k)
     b.slot[static_cast<std::size_t>(box_row(k) * width + box_col(k))] = static_cast<long>(k);
+  // Where every dry node below the level touches a node the flood starts from (below), the
+  // flood reaches them all at its first step and nothing is dropped. So it is for 98 % of the
+  // supports that come this far on the valley flood; this look at each dry node's eight
+  // neighbours spares them the flood, which took a tenth of that run's time.
+  const auto starts_flood = [&](std::size_t k) {
+    return (occupied[b.node[k]] && b.z[k] < level) || b.node[k] == own_node;
+  };
+  const auto touches_start = [&](std::size_t k) {
+    const long col = box_col(k), row = box_row(k);
+    for (long r = std::max(0L, row - 1); r <= std::min(height - 1, row + 1); ++r) {
+      for (long c = std::max(0L, col - 1); c <= std::min(width - 1, col + 1); ++c) {
+        const long t = b.slot[static_cast<std::size_t>(r * width + c)];
+        if (t >= 0 && starts_flood(static_cast<std::size_t>(t))) return true;
+      }
+    }
+    return false;
+  };
+  bool all_touch = true;
+  for (std::size_t k = 0; k < count && all_touch; ++k) {
+    if (b.z[k] < level && !starts_flood(k)) all_touch = touches_start(k);
+  }
+  if (all_touch) return false;
 
   double kept_level = level;
   b.beyond_rim.assign(count, 0);
@@ -284,18 +320,24 @@ double bed_gradient(const NodeBuffer& b) {
   return norm(gx, gy);
 }
 
+// The floor under a partly wet support's eigenvalues, given the largest.
+double wet_set_floor(double largest_eigenvalue) {
+  return std::max(kWetSetConditioning * largest_eigenvalue, kSmallestWetJacobian);
+}
+
 // J^-1 (gx, gy) for the symmetric J = [[jxx, jxy], [jxy, jyy]], with J's eigenvalues taken as
-// no less than kSmallestJacobian.
+// no less than wet_set_floor.
 std::array<double, 2> solve_floored(double jxx, double jxy, double jyy, double gx, double gy) {
   const double mean = 0.5 * (jxx + jyy);
   const double spread = std::sqrt(0.25 * (jxx - jyy) * (jxx - jyy) + jxy * jxy);
   const double large = mean + spread, small = mean - spread;
-  if (!(small >= kSmallestJacobian)) {
+  const double floor = wet_set_floor(large);
+  if (!(small >= floor)) {
     // Eigenvectors: (cos t, sin t) for the large eigenvalue, with tan 2t = 2 jxy / (jxx - jyy).
     const double t = 0.5 * std::atan2(2.0 * jxy, jxx - jyy);
     const double ex = std::cos(t), ey = std::sin(t);
-    const double along = (ex * gx + ey * gy) / std::max(large, kSmallestJacobian);
-    const double across = (-ey * gx + ex * gy) / std::max(small, kSmallestJacobian);
+    const double along = (ex * gx + ey * gy) / std::max(large, floor);
+    const double across = (-ey * gx + ex * gy) / std::max(small, floor);
     return {along * ex - across * ey, along * ey + across * ex};
   }
   const double det = jxx * jyy - jxy * jxy;
@@ -317,10 +359,11 @@ std::array<double, 2> solve_floored(double jxx, double jxy, double jyy, double g
 // `wet` == nullptr: every node. `wetted` != nullptr: the set the plane wets is written there
 // (wet_set_slope's next guess).
 enum class WetSetFit { exact, other_set, undetermined };
+enum class Nodes { all, wet_set };  // the floor: kSmallestFullJacobian, or wet_set_floor
 
 WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const NodeBuffer& b,
-                           const std::vector<char>* wet, double smallest_eigenvalue,
-                           std::array<double, 2>& slope, std::vector<char>* wetted = nullptr,
+                           const std::vector<char>* wet, Nodes nodes, std::array<double, 2>& slope,
+                           std::vector<char>* wetted = nullptr,
                            double* level_at_particle = nullptr) {
   const std::size_t count = b.z.size();
   double w = 0.0, wz = 0.0, mx = 0.0, my = 0.0, gx = 0.0, gy = 0.0, zx = 0.0, zy = 0.0;
@@ -352,7 +395,9 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
   // shore.
   const double mean = 0.5 * (axx + ayy), off = 0.5 * (axy + ayx);
   const double spread = std::sqrt(0.25 * (axx - ayy) * (axx - ayy) + off * off);
-  if (!(mean - spread >= smallest_eigenvalue)) return WetSetFit::undetermined;
+  const double smallest =
+      nodes == Nodes::all ? kSmallestFullJacobian : wet_set_floor(mean + spread);
+  if (!(mean - spread >= smallest)) return WetSetFit::undetermined;
   const double held = (depth + wz) / w;
   const double rx = grad_h_x - gx * held + zx, ry = grad_h_y - gy * held + zy;
   const double det = axx * ayy - axy * ayx;
@@ -389,8 +434,8 @@ WetSetFit plane_on_wet_set(double depth, double grad_h_x, double grad_h_y, const
 bool wet_set_slope(double depth, double grad_h_x, double grad_h_y, NodeBuffer& b,
                    std::array<double, 2>& slope, double& level) {
   for (int tries = 0; tries < kWetSetTries; ++tries) {
-    const WetSetFit fit = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet,
-                                           kSmallestSettledJacobian, slope, &b.wetted, &level);
+    const WetSetFit fit = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet, Nodes::wet_set,
+                                           slope, &b.wetted, &level);
     if (fit == WetSetFit::exact) return true;
     if (fit == WetSetFit::undetermined) return false;
     std::swap(b.wet, b.wetted);
@@ -420,8 +465,8 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
   // them all it is the root; when it does not, it is still the plane a support too thinly wet to
   // hold one falls back on (below).
   std::array<double, 2> all_wet{};
-  WetSetFit interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian,
-                                        all_wet, &b.wetted_by_all_wet_plane, &all_wet_level);
+  WetSetFit interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, Nodes::all, all_wet,
+                                        &b.wetted_by_all_wet_plane, &all_wet_level);
   // A partly dry support: lower ground beyond a rim left out (drop_ground_beyond_rims), then its
   // wet set, first guessed as the nodes under the level that holds the depth sum with no slope,
   // then (where that set holds no plane, as a film's few nodes on a hillside do not) as the
@@ -433,7 +478,7 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
   if (!solved) {
     level = level_holding(b.z, b.w, depth);
     if (drop_ground_beyond_rims(occupied, own_node, depth, b, level)) {
-      interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, kSmallestJacobian, all_wet,
+      interior = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, nullptr, Nodes::all, all_wet,
                                   &b.wetted_by_all_wet_plane, &all_wet_level);
       exact = interior == WetSetFit::exact;
       solved = exact;
@@ -463,6 +508,7 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
   bool newton_settled = false;  // ended on an exact solve on a settled wet set
   double base_x = 0.0, base_y = 0.0, step_x = 0.0, step_y = 0.0;
   double previous_residual = std::numeric_limits<double>::infinity();
+  int halvings = 0;  // in a row
   for (int steps = 0; !solved && steps < kMaxPlaneSteps; ++steps) {
     for (std::size_t k = 0; k < count; ++k) b.tilted[k] = b.z[k] - sx * b.ox[k] - sy * b.oy[k];
     const double level = level_holding(b.tilted, b.w, depth);
@@ -498,9 +544,8 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     bool undetermined = false;  // on b.wet, which becomes b.previous_wet below
     if (b.wet == b.previous_wet) {
       std::array<double, 2> settled{};
-      const WetSetFit fit =
-          plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet, kSmallestSettledJacobian, settled,
-                           nullptr, &settled_level);
+      const WetSetFit fit = plane_on_wet_set(depth, grad_h_x, grad_h_y, b, &b.wet, Nodes::wet_set,
+                                             settled, nullptr, &settled_level);
       if (fit == WetSetFit::exact) {
         sx = settled[0];
         sy = settled[1];
@@ -511,6 +556,11 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
     }
     std::swap(b.wet, b.previous_wet);
     if (residual > previous_residual && norm(step_x, step_y) > kSlopeTolerance) {
+      if (++halvings > kMaxHalvings) {
+        sx = base_x;
+        sy = base_y;
+        break;
+      }
       step_x *= 0.5;
       step_y *= 0.5;
       sx = base_x + step_x;
@@ -518,6 +568,7 @@ std::array<double, 2> surface_slope(double depth, double h, double grad_h_x, dou
       continue;
     }
     previous_residual = residual;
+    halvings = 0;
     mx /= wet;
     my /= wet;
     // J symmetrised: the step is a Newton step on the symmetric part.
