@@ -178,6 +178,22 @@ void rasters_section(const scenario::Scenario& scene, const scenario::Terrain& t
                 terrain.domain);
     any = true;
   }
+  for (std::size_t i = 0; i < scene.water.size() && i < terrain.displacement.size(); ++i) {
+    const auto& body = scene.water[i];
+    if (const auto* rise = std::get_if<scenario::DisplacementRaster>(&body.displacement);
+        rise && terrain.displacement[i]) {
+      raster_rows(fmt::format("water {} surface displacement", i), rise->raster.path,
+                  *terrain.displacement[i], terrain.domain);
+      any = true;
+    }
+    if (body.velocity_rasters && terrain.velocity_u[i] && terrain.velocity_v[i]) {
+      raster_rows(fmt::format("water {} velocity u", i), body.velocity_rasters->u.path,
+                  *terrain.velocity_u[i], terrain.domain);
+      raster_rows(fmt::format("water {} velocity v", i), body.velocity_rasters->v.path,
+                  *terrain.velocity_v[i], terrain.domain);
+      any = true;
+    }
+  }
   if (!any) row("none", "the scene reads no raster");
 }
 

@@ -1,6 +1,7 @@
 #include "swemps/scenario/build.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -10,11 +11,13 @@
 #include <stdexcept>
 #include <variant>
 
+#include "starting_surface.hpp"
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
 #include "swemps/boundaries/hydrograph.hpp"
 #include "swemps/boundaries/inflow_line.hpp"
 #include "swemps/boundaries/outflow_line.hpp"
+#include "swemps/io/geographic.hpp"
 #include "swemps/io/hydrograph_csv.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/particles/seeding.hpp"
@@ -171,23 +174,54 @@ void check_covers(const Field& field, const Rectangle& domain, const std::string
   }
 }
 
-// Manning's n must be > 0 wherever the interpolation may reach from inside the domain: the
-// cells centred within one cell of it.
-void check_positive(const Field& field, const Rectangle& domain, const std::string& json_path) {
+// The centre and value (x, y, v) of the first cell, in row-major order, whose value `pick`
+// takes among the cells centred within one cell of `r`: those bilinear sampling may reach from
+// inside it.
+template <class Pick>
+std::optional<std::array<double, 3>> first_cell_near(const Field& field, const Rectangle& r,
+                                                     const Pick& pick) {
   const auto& g = field.geometry();
   for (std::size_t row = 0; row < g.rows; ++row) {
     const double y = g.cell_centre_y(row);
-    if (y < domain.y_min - g.cell_height || y > domain.y_max + g.cell_height) continue;
+    if (y < r.y_min - g.cell_height || y > r.y_max + g.cell_height) continue;
     for (std::size_t col = 0; col < g.columns; ++col) {
       const double x = g.cell_centre_x(col);
-      if (x < domain.x_min - g.cell_width || x > domain.x_max + g.cell_width) continue;
-      const double n = field.at(col, row);
-      if (std::isnan(n) || n > 0.0) continue;
-      throw ScenarioError(json_path,
-                          "Manning's n = " + fmt(n) + " in the cell centred at " + fmt_point(x, y),
-                          "values > 0 (s m^-1/3) over the domain");
+      if (x < r.x_min - g.cell_width || x > r.x_max + g.cell_width) continue;
+      const double v = field.at(col, row);
+      if (pick(v)) return std::array<double, 3>{x, y, v};
     }
   }
+  return std::nullopt;
+}
+
+// Manning's n must be > 0 wherever the interpolation may reach from inside the domain.
+void check_positive(const Field& field, const Rectangle& domain, const std::string& json_path) {
+  const auto bad =
+      first_cell_near(field, domain, [](double n) { return !std::isnan(n) && !(n > 0.0); });
+  if (!bad) return;
+  const auto [x, y, n] = *bad;
+  throw ScenarioError(json_path,
+                      "Manning's n = " + fmt(n) + " in the cell centred at " + fmt_point(x, y),
+                      "values > 0 (s m^-1/3) over the domain");
+}
+
+// A raster of a starting disturbance (a surface's rise, a velocity component) need not cover
+// the domain, as water without a disturbance is still; but one that misses it entirely is a
+// mistake (another CRS, another place), and so is one with no value over it.
+void check_overlaps(const Field& field, const Rectangle& domain, const std::string& json_path,
+                    const std::string& what) {
+  const Rectangle e = extent(field);
+  const Rectangle overlap{std::max(e.x_min, domain.x_min), std::min(e.x_max, domain.x_max),
+                          std::max(e.y_min, domain.y_min), std::min(e.y_max, domain.y_max)};
+  if (!(overlap.x_min < overlap.x_max && overlap.y_min < overlap.y_max)) {
+    throw ScenarioError(
+        json_path,
+        what + " covering " + describe_box(e) + ", which misses the domain " + describe_box(domain),
+        "a raster over the domain, in the scene's CRS or with one GDAL can warp");
+  }
+  if (first_cell_near(field, overlap, [](double v) { return !std::isnan(v); })) return;
+  throw ScenarioError(json_path, what + " that is nodata over the whole domain",
+                      "values over the domain (nodata cells count as no disturbance)");
 }
 
 // The domain a raster bed settles: the one given, which must lie on the raster, or the
@@ -299,6 +333,10 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
   Seeded out;
   auto& p = out.particles;
   const swe::BedSource* bed = terrain.bed.get();
+  // The still water's depth is measured over the floor before a rupture: the water over the
+  // floor keeps its depth as the floor moves, so its surface moves with the floor.
+  const swe::BedSource* still_bed =
+      terrain.fault_source ? terrain.bed_before_rupture.get() : terrain.bed.get();
   for (std::size_t i = 0; i < scene.water.size(); ++i) {
     const WaterBody& body = scene.water[i];
     const auto polygon = body.polygon.empty() ? corners(terrain.domain) : body.polygon;
@@ -315,16 +353,20 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
     for (std::size_t m = 0; m < count; ++m) {
       const auto& point = lattice.points[m];
       bed_at[m] = bed ? bed->elevation(point[0], point[1]) : 0.0;
-      bed_min = std::min(bed_min, bed_at[m]);
-      bed_max = std::max(bed_max, bed_at[m]);
-      depth_at[m] =
-          starting_depth(body, terrain.water_depth[i].get(), bed, point[0], point[1], bed_at[m]);
+      const double still_z = still_bed ? still_bed->elevation(point[0], point[1]) : 0.0;
+      bed_min = std::min(bed_min, still_z);
+      bed_max = std::max(bed_max, still_z);
+      depth_at[m] = starting_depth(body, terrain.water_depth[i].get(), still_bed, point[0],
+                                   point[1], still_z);
     }
     const std::vector<char> in_lake = lake_from_point(body, lattice, depth_at, i);
+    const StartingSurface start(scene, terrain, i);
+    const bool displaced = !std::holds_alternative<std::monostate>(body.displacement);
     std::size_t added = 0;
     for (std::size_t m = 0; m < count; ++m) {
       const auto& point = lattice.points[m];
-      const double z_b = bed_at[m], h = depth_at[m];
+      const double z_b = bed_at[m];
+      double h = depth_at[m];
       // Below the level but beyond the rim of a lake filled from a point: dry ground.
       if (!in_lake.empty() && !in_lake[m]) continue;
       // NaN fails the test too: dry.
@@ -332,9 +374,18 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
         if (h > 0.0) out.thin_film.push_back({point[0], point[1], z_b + h});
         continue;
       }
+      // A displaced surface rises (or falls) where the still body holds water: ground the
+      // still level leaves dry stays dry (a fault's uplift of the land holds no water).
+      if (displaced) {
+        h += start.rise(point[0], point[1]);
+        if (!(h > body.min_depth_m)) {
+          if (h > 0.0 && !uniform) out.thin_film.push_back({point[0], point[1], z_b + h});
+          continue;
+        }
+      }
+      const auto [u, v] = start.velocity(point[0], point[1]);
       // Each particle carries the water of its lattice cell: the scene's volume exactly.
-      p.add_fluid(point[0], point[1], body.velocity_m_s[0], body.velocity_m_s[1],
-                  h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b);
+      p.add_fluid(point[0], point[1], u, v, h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b);
       out.target_depth_m.push_back(h);
       out.from_terrain.push_back(uniform ? 0 : 1);
       out.volumes.geometric_m3 += h * lattice.cell_area_m2;
@@ -424,6 +475,74 @@ std::unique_ptr<swe::Effect> make_outflow(const std::vector<Outflow>& outflows) 
   }
 }
 
+// The rasters each water body's starting surface names: its rise and its velocity's
+// components, warped to the scene's CRS like the others.
+void read_starting_rasters(const Scenario& scene, SceneCrs& crs, Terrain& terrain) {
+  const std::size_t bodies = scene.water.size();
+  terrain.displacement.resize(bodies);
+  terrain.velocity_u.resize(bodies);
+  terrain.velocity_v.resize(bodies);
+  const auto read = [&](const RasterSpec& spec, const std::string& what, const std::string& path) {
+    auto field = std::make_shared<const Field>(crs.read(spec, what, "bed.crs", path));
+    check_overlaps(*field, terrain.domain, path, "a " + what);
+    return field;
+  };
+  for (std::size_t i = 0; i < bodies; ++i) {
+    const WaterBody& body = scene.water[i];
+    const std::string path = index_path("/water", i);
+    if (const auto* raster = std::get_if<DisplacementRaster>(&body.displacement)) {
+      terrain.displacement[i] =
+          read(raster->raster, "surface displacement raster", path + "/surface_displacement");
+    }
+    if (body.velocity_rasters) {
+      terrain.velocity_u[i] =
+          read(body.velocity_rasters->u, "east velocity raster", path + "/velocity/u");
+      terrain.velocity_v[i] =
+          read(body.velocity_rasters->v, "north velocity raster", path + "/velocity/v");
+    }
+  }
+}
+
+// The floor after an instantaneous rupture of the scene's fault planes. Planes placed by
+// longitude and latitude are projected to the scene's CRS, their strike turned from true
+// north to the map's; every plane's top edge midpoint must lie in the domain.
+void rupture(const FaultSourceSpec& spec, Terrain& terrain) {
+  std::vector<tsunami::FaultPlane> planes;
+  for (std::size_t i = 0; i < spec.planes.size(); ++i) {
+    tsunami::FaultPlane plane = spec.planes[i].plane;
+    const std::string path = index_path("/fault_source/planes", i);
+    if (const auto& lon_lat = spec.planes[i].longitude_latitude) {
+      try {
+        const auto projected =
+            io::project_geographic((*lon_lat)[0], (*lon_lat)[1], terrain.crs_wkt);
+        plane.top_centre_m = {projected.x_m, projected.y_m};
+        plane.strike_deg += projected.north_bearing_deg;
+      } catch (const std::runtime_error& e) {
+        throw ScenarioError(path, e.what(),
+                            "a position in a scene with a projected CRS (a raster bed's, or "
+                            "\"x\" and \"y\" on the map)");
+      }
+      const auto [x, y] = plane.top_centre_m;
+      const Rectangle& d = terrain.domain;
+      if (x < d.x_min || x > d.x_max || y < d.y_min || y > d.y_max) {
+        throw ScenarioError(path,
+                            "the top edge's midpoint at " + fmt_point(x, y) +
+                                " outside the domain " + describe_box(d),
+                            "a fault plane's top edge midpoint lying inside the domain");
+      }
+    }
+    planes.push_back(plane);
+  }
+  try {
+    terrain.fault_source =
+        std::make_shared<const tsunami::FaultSource>(std::move(planes), spec.poisson_ratio);
+  } catch (const std::invalid_argument& e) {
+    throw ScenarioError("/fault_source", e.what(), "fault planes the source accepts");
+  }
+  terrain.bed_before_rupture = terrain.bed;
+  terrain.bed = std::make_shared<tsunami::RupturedBed>(terrain.bed, terrain.fault_source);
+}
+
 }  // namespace
 
 Terrain read_terrain(const Scenario& scene) {
@@ -463,7 +582,9 @@ Terrain read_terrain(const Scenario& scene) {
                    path + "/depth_raster"));
     }
   }
+  read_starting_rasters(scene, crs, terrain);
   terrain.crs_wkt = crs.wkt();
+  if (scene.fault_source) rupture(*scene.fault_source, terrain);
   return terrain;
 }
 
@@ -472,8 +593,8 @@ Terrain read_terrain(const Scenario& scene) {
 // neither, a hundredth of the domain's shorter side). It reaches past the domain by the
 // widest support a particle can take (h = kappa sqrt(cap A_0)).
 std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
-                                                         const Terrain& terrain,
-                                                         const Seeded& water) {
+                                                        const Terrain& terrain,
+                                                        const Seeded& water) {
   const auto& seeded = water.lattice;
   const Rectangle& d = terrain.domain;
   swe::BedLatticeGeometry geometry;
@@ -485,10 +606,10 @@ std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
     // 4 m particles) made the bed term 125 s of a 143 s run (docs/verification.md).
     double spacing = std::min(d.x_max - d.x_min, d.y_max - d.y_min) / 100.0;
     if (!scene.inflows.empty()) {
-      spacing = std::min_element(scene.inflows.begin(), scene.inflows.end(),
-                                 [](const auto& a, const auto& b) {
-                                   return a.spacing_m < b.spacing_m;
-                                 })->spacing_m;
+      spacing =
+          std::min_element(scene.inflows.begin(), scene.inflows.end(),
+                           [](const auto& a, const auto& b) { return a.spacing_m < b.spacing_m; })
+              ->spacing_m;
     }
     geometry = {d.x_min, d.y_min, spacing, spacing, spacing * spacing};
   }
@@ -522,11 +643,11 @@ BuiltScene build(const Scenario& scene) {
   // A level bed exerts no force: its elevation is set once on the particles (and inherited
   // by daughters), and no effect runs.
   const auto* plane = std::get_if<PlaneBedSpec>(&scene.bed);
-  const bool level = plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0;
+  const bool level =
+      plane && plane->slope[0] == 0.0 && plane->slope[1] == 0.0 && !scene.fault_source;
   Seeded seeded = seed_water(scene, terrain);
   const bool conservative = scene.numerics.scheme == swe::SchemeKind::conservative;
-  if (terrain.bed && !level && conservative &&
-      scene.numerics.bed_term == swe::BedTerm::balanced) {
+  if (terrain.bed && !level && conservative && scene.numerics.bed_term == swe::BedTerm::balanced) {
     // The bed seen through each particle's kernel on the seeding lattice: water filled to a
     // level stays at rest (swe/balanced_bed_slope.hpp).
     effects.push_back(std::make_unique<swe::BalancedBedSlope>(
@@ -617,84 +738,6 @@ BuiltScene build(const Scenario& scene) {
 
 swe::Simulation make_simulation(const Scenario& scene) {
   return std::move(build(scene).simulation);
-}
-
-namespace {
-
-// The smallest spacing the scene creates particles at; 0 when it creates none.
-double finest_spacing(const Scenario& scene) {
-  double finest = 0.0;
-  const auto consider = [&](double spacing) {
-    if (spacing > 0.0 && (finest == 0.0 || spacing < finest)) finest = spacing;
-  };
-  for (const auto& w : scene.water) consider(w.spacing_m);
-  for (const auto& in : scene.inflows) consider(in.spacing_m);
-  return finest;
-}
-
-maps::Bounds domain_bounds(const Terrain& terrain) {
-  const auto& d = terrain.domain;
-  return {d.x_min, d.x_max, d.y_min, d.y_max};
-}
-
-}  // namespace
-
-maps::CellAverages map_reader(const Scenario& scene, const Terrain& terrain,
-                              const swe::RegularGrid& grid) {
-  return maps::CellAverages(grid, terrain.bed, domain_bounds(terrain), finest_spacing(scene));
-}
-
-maps::CellAverages gauge_reader(const Scenario& scene, const Terrain& terrain,
-                                const swe::RegularGrid& grid, const Point& point) {
-  const double finest = finest_spacing(scene);
-  const double cap = finest > 0.0 ? kGaugeSpacings * finest : grid.dx;
-  const double width = std::min(grid.dx, cap), height = std::min(grid.dy, cap);
-  const swe::RegularGrid cell{point[0], point[1], width, height, 1, 1};
-  return maps::CellAverages(cell, terrain.bed, domain_bounds(terrain), finest);
-}
-
-swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain) {
-  const auto& g = scene.output.grid;
-  const Rectangle bounds = g.bounds.value_or(terrain.domain);
-  if (g.spacing_m || !terrain.bed_raster) {
-    const double spacing = g.spacing_m.value_or(bounds.x_max - bounds.x_min);
-    const double width = bounds.x_max - bounds.x_min;
-    const double height = bounds.y_max - bounds.y_min;
-    const auto nx = static_cast<std::size_t>(std::max(1.0, std::round(width / spacing)));
-    const auto ny = static_cast<std::size_t>(std::max(1.0, std::round(height / spacing)));
-    const double dx = width / static_cast<double>(nx);
-    const double dy = height / static_cast<double>(ny);
-    return {bounds.x_min + 0.5 * dx, bounds.y_min + 0.5 * dy, dx, dy, nx, ny};
-  }
-  // The bed raster's own cells, so that the maps line up with the DEM cell for cell. A cell
-  // counts when it lies whole inside the bounds; 1e-9 of a cell forgives bounds that were
-  // written out with rounding.
-  const auto& geo = terrain.bed_cells;
-  constexpr double kForgive = 1e-9;
-  const auto clamp_index = [](double index, std::size_t count) {
-    return static_cast<std::size_t>(std::clamp(index, 0.0, static_cast<double>(count)));
-  };
-  const std::size_t col_begin =
-      clamp_index(std::ceil((bounds.x_min - geo.x_left) / geo.cell_width - kForgive), geo.columns);
-  const std::size_t col_end =
-      clamp_index(std::floor((bounds.x_max - geo.x_left) / geo.cell_width + kForgive), geo.columns);
-  const std::size_t row_begin =
-      clamp_index(std::ceil((geo.y_top - bounds.y_max) / geo.cell_height - kForgive), geo.rows);
-  const std::size_t row_end =
-      clamp_index(std::floor((geo.y_top - bounds.y_min) / geo.cell_height + kForgive), geo.rows);
-  if (col_end <= col_begin || row_end <= row_begin) {
-    throw ScenarioError(g.bounds ? "/output/grid" : "/domain",
-                        "bounds " + describe_box(bounds) + " holding no whole bed raster cell (" +
-                            fmt(geo.cell_width) + " m x " + fmt(geo.cell_height) + " m)",
-                        "bounds holding at least one bed raster cell, or a grid \"spacing\"");
-  }
-  // Rows of the output grid run south to north: the first is the raster's southernmost.
-  return {geo.cell_centre_x(col_begin),
-          geo.cell_centre_y(row_end - 1),
-          geo.cell_width,
-          geo.cell_height,
-          col_end - col_begin,
-          row_end - row_begin};
 }
 
 }  // namespace swemps::scenario

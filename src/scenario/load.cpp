@@ -307,12 +307,16 @@ std::vector<Point> corners(const Rectangle& r) {
   return {{r.x_min, r.y_min}, {r.x_max, r.y_min}, {r.x_max, r.y_max}, {r.x_min, r.y_max}};
 }
 
-namespace {
-
 std::string describe_box(const Rectangle& r) {
-  return "[" + fmt(r.x_min) + ", " + fmt(r.x_max) + "] x [" + fmt(r.y_min) + ", " + fmt(r.y_max) +
-         "]";
+  std::string text = "[";
+  for (const auto& part : {fmt(r.x_min), std::string(", "), fmt(r.x_max), std::string("] x ["),
+                           fmt(r.y_min), std::string(", "), fmt(r.y_max), std::string("]")}) {
+    text += part;
+  }
+  return text;
 }
+
+namespace {
 
 // Points must lie inside the domain: water outside it would be removed at once, and an inflow
 // line or gauge outside it would see no water. `vertex_paths` points errors at the offending
@@ -658,6 +662,19 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
   for (std::size_t i = 0; i < scene.water.size(); ++i) {
     const auto& polygon = scene.water[i].polygon;
     if (!polygon.empty()) check_inside(polygon, domain, element_path("/water", i), false);
+    if (const auto* wave = std::get_if<SolitaryWaveStart>(&scene.water[i].displacement)) {
+      check_inside({wave->crest_m}, domain,
+                   member_path(member_path(element_path("/water", i), "solitary_wave"), "crest"),
+                   false, "a wave's crest point");
+    }
+  }
+  if (scene.fault_source) {
+    const auto& planes = scene.fault_source->planes;
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+      if (planes[i].longitude_latitude) continue;  // placed, and checked, once projected
+      check_inside({planes[i].plane.top_centre_m}, domain, element_path("/fault_source/planes", i),
+                   false, "a fault plane's top edge midpoint lying");
+    }
   }
   for (std::size_t i = 0; i < scene.inflows.size(); ++i) {
     const auto& line = scene.inflows[i].line;
@@ -681,7 +698,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   const Object o(root, "",
                  {"name", "description", "gravity", "end_time", "numerics", "model", "dimension",
                   "ns", "domain", "water", "walls", "bed", "friction", "splitting", "merging",
-                  "inflow", "outflow", "output"},
+                  "inflow", "outflow", "fault_source", "output"},
                  "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
@@ -728,6 +745,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                         "a non-empty array of water bodies, or an \"inflow\" to bring water in");
   }
   s.outflows = read_outflows(o.find("outflow"));
+  s.fault_source = read_fault_source(o.find("fault_source"));
   check_crs_keys(s);
   s.output = read_output(o.find("output"), s, base_dir);
   if (domain) check_within_domain(s, *domain);

@@ -277,6 +277,18 @@ void check_ns_water(const Scenario& s, double tank_height) {
           "a starting velocity [" + fmt(w.velocity_m_s[0]) + ", " + fmt(w.velocity_m_s[1]) + "]",
           "water at rest, [0, 0] (" + unsupported("a starting velocity") + ")");
     }
+    if (w.velocity_rasters) {
+      throw ScenarioError(member_path(path, "velocity"), "a starting velocity from rasters",
+                          "water at rest (" + unsupported("a starting velocity") + ")");
+    }
+    if (std::holds_alternative<SolitaryWaveStart>(w.displacement)) {
+      throw ScenarioError(member_path(path, "solitary_wave"), "a solitary wave",
+                          "water at rest (" + unsupported("a starting wave") + ")");
+    }
+    if (std::holds_alternative<DisplacementRaster>(w.displacement)) {
+      throw ScenarioError(member_path(path, "surface_displacement"), "a displaced surface",
+                          "water at rest (" + unsupported("a starting wave") + ")");
+    }
     const double depth = std::get<UniformDepth>(w.depth).depth_m;
     if (depth > tank_height * (1.0 + 1e-12)) {
       throw ScenarioError("/ns/tank_height",
@@ -331,6 +343,11 @@ void check_ns_scene(const Scenario& s) {
     throw ScenarioError("/bed/raster", "a raster bed",
                         "no bed or a level \"plane\" (" + unsupported("a raster bed") +
                             ": the tank's floor is flat)");
+  }
+  if (s.fault_source) {
+    throw ScenarioError(
+        "/fault_source", "a fault source",
+        "no \"fault_source\" (" + unsupported("a fault source") + ": the tank's floor is flat)");
   }
   if (s.manning_n) {
     throw ScenarioError("/friction", "bed friction",

@@ -41,6 +41,9 @@ void check_inside(const std::vector<Point>& poly, const Rectangle& domain, const
 std::string crs_text(const json_reading::Object& o);
 std::string several(const std::vector<std::string_view>& keys);
 
+// "[x_min, x_max] x [y_min, y_max]", for messages (load.cpp).
+std::string describe_box(const Rectangle& r);
+
 // The four box keys of `o`, all required, min < max on both axes (load.cpp).
 Rectangle box(const json_reading::Object& o);
 extern const json_reading::Names kBoxKeys;  // x_min, x_max, y_min, y_max
@@ -61,6 +64,9 @@ std::vector<WaterBody> read_waters(const json_reading::json* v,
 std::vector<Inflow> read_inflows(const json_reading::json* v, const std::vector<WaterBody>& water,
                                  const std::filesystem::path& base_dir);
 std::vector<Outflow> read_outflows(const json_reading::json* v);
+
+// The "fault_source" section (load_tsunami.cpp); absent: none.
+std::optional<FaultSourceSpec> read_fault_source(const json_reading::json* v);
 
 // The "output" section, read after everything it refers to (load_output.cpp).
 Output read_output(const json_reading::json* v, const Scenario& scene,

@@ -53,6 +53,62 @@ std::optional<std::vector<Point>> read_shape(const Object& o, bool optional,
   return poly;
 }
 
+// "solitary_wave": a wave over the body's still water (tsunami/solitary_wave.hpp). The still
+// depth, when given, must exceed the height; the crest is checked against the domain with the
+// shapes (check_within_domain).
+SolitaryWaveStart read_solitary_wave(const json& v, const std::string& path) {
+  const Object o(v, path, {"height", "depth", "crest", "direction"},
+                 "an object with \"height\", \"crest\" and \"direction\", and optionally "
+                 "\"depth\"");
+  SolitaryWaveStart wave;
+  wave.height_m = positive(o, "height", kMetres);
+  if (o.find("depth") != nullptr) {
+    const double depth = positive(o, "depth", kMetres);
+    if (!(depth > wave.height_m)) {
+      throw ScenarioError(o.path("depth"),
+                          fmt(depth) + " m, not above the height " + fmt(wave.height_m) + " m",
+                          "the still water's depth under the wave, greater than its height");
+    }
+    wave.still_depth_m = depth;
+  }
+  const json* crest = o.find("crest");
+  if (crest == nullptr) {
+    throw ScenarioError(o.path("crest"), kMissing, "an [x, y] point on the crest line (m)");
+  }
+  wave.crest_m = pair(*crest, o.path("crest"), "an [x, y] point on the crest line (m)");
+  const json* direction = o.find("direction");
+  if (direction == nullptr) {
+    throw ScenarioError(o.path("direction"), kMissing,
+                        "an [x, y] vector, the way the wave travels");
+  }
+  wave.direction = pair(*direction, o.path("direction"),
+                        "an [x, y] vector, the way the wave "
+                        "travels");
+  if (wave.direction[0] == 0.0 && wave.direction[1] == 0.0) {
+    throw ScenarioError(o.path("direction"), "[0, 0]",
+                        "a non-zero [x, y] vector, the way the wave travels");
+  }
+  return wave;
+}
+
+// "velocity": a [u, v] pair, or an object naming two rasters, {"u": ..., "v": ...}.
+void read_velocity(const Object& o, const std::filesystem::path& base_dir, WaterBody& w) {
+  const json* velocity = o.find("velocity");
+  if (velocity == nullptr) return;
+  if (!velocity->is_object()) {
+    w.velocity_m_s = pair(*velocity, o.path("velocity"),
+                          "a [u, v] pair of numbers (m/s), or an object {\"u\": raster, "
+                          "\"v\": raster}");
+    return;
+  }
+  const Object rasters(*velocity, o.path("velocity"), {"u", "v"},
+                       "an object with \"u\" and \"v\", rasters of the velocity's east and "
+                       "north components (m/s)");
+  w.velocity_rasters = VelocityRasters{
+      RasterSpec{file_path(rasters, "u", "a raster of the east velocity (m/s)", base_dir), {}},
+      RasterSpec{file_path(rasters, "v", "a raster of the north velocity (m/s)", base_dir), {}}};
+}
+
 // A key that does not belong to the way this body of water is given.
 void forbid(const Object& o, std::string_view key, std::string_view form,
             const std::string& belongs) {
@@ -66,10 +122,11 @@ ParsedWater read_water(const json& v, const std::string& path,
                        const std::optional<Rectangle>& domain, bool has_bed,
                        const std::filesystem::path& base_dir, double default_spacing_m,
                        swe::SchemeKind scheme) {
-  const Object o(v, path,
-                 {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth",
-                  "velocity", "spacing", "volumes", "rectangle", "polygon"},
-                 "an object describing a body of water");
+  const Object o(
+      v, path,
+      {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth", "velocity",
+       "surface_displacement", "solitary_wave", "spacing", "volumes", "rectangle", "polygon"},
+      "an object describing a body of water");
   std::vector<std::string_view> forms;
   for (std::string_view key : {"depth", "fill", "depth_raster"}) {
     if (o.find(key) != nullptr) forms.push_back(key);
@@ -127,8 +184,24 @@ ParsedWater read_water(const json& v, const std::string& path,
         file_path(o, "depth_raster", "a raster of water depths (metres)", base_dir), crs_text(o)}};
   }
   if (form != "depth") w.min_depth_m = non_negative(o, "min_depth", kMetres, w.min_depth_m);
-  if (const json* velocity = o.find("velocity")) {
-    w.velocity_m_s = pair(*velocity, o.path("velocity"), "a [u, v] pair of numbers (m/s)");
+  read_velocity(o, base_dir, w);
+  const json* displacement = o.find("surface_displacement");
+  const json* wave = o.find("solitary_wave");
+  if (displacement && wave) {
+    throw ScenarioError(path, "both \"surface_displacement\" and \"solitary_wave\"",
+                        "at most one of them (how the surface starts displaced)");
+  }
+  if ((displacement || wave) && form == "depth_raster") {
+    const std::string_view key = displacement ? "surface_displacement" : "solitary_wave";
+    forbid(o, key, form,
+           "it goes with \"depth\" or \"fill\"; a depth raster gives the displaced depth "
+           "itself");
+  }
+  if (wave) w.displacement = read_solitary_wave(*wave, o.path("solitary_wave"));
+  if (displacement) {
+    w.displacement = DisplacementRaster{RasterSpec{
+        file_path(o, "surface_displacement", "a raster of the surface's rise (metres)", base_dir),
+        {}}};
   }
 
   // A spacing wider than the shape would fill it with at most one row of particles. The

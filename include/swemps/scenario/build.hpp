@@ -16,6 +16,7 @@
 #include "swemps/swe/operators.hpp"
 #include "swemps/swe/simulation.hpp"
 #include "swemps/terrain/gridded_field.hpp"
+#include "swemps/tsunami/okada.hpp"
 
 namespace swemps::scenario {
 
@@ -23,6 +24,10 @@ namespace swemps::scenario {
 struct Terrain {
   Rectangle domain;                                         // as given, or the bed raster's extent
   std::shared_ptr<const swe::BedSource> bed;                // null: flat at z = 0
+  // With a fault source: `bed` is the floor after the rupture, and this the one before it
+  // (null: flat at z = 0), over which the water's still depth is measured.
+  std::shared_ptr<const swe::BedSource> bed_before_rupture;
+  std::shared_ptr<const tsunami::FaultSource> fault_source;  // null: none
   std::shared_ptr<const terrain::GriddedField> bed_raster;  // raster beds only: the surface
   // A raster bed's natural cells: the file's own, or those its warp to the scene's CRS lands
   // on. bed_raster splits each of them bed_refinement x bed_refinement times.
@@ -31,6 +36,9 @@ struct Terrain {
   std::shared_ptr<const terrain::GriddedField> roughness;  // Manning's n map only
   // Per water body, the depth raster it names; null for the other bodies.
   std::vector<std::shared_ptr<const terrain::GriddedField>> water_depth;
+  // Per water body, the rasters of its surface's starting rise and of its starting velocity's
+  // east and north components; null where it names none.
+  std::vector<std::shared_ptr<const terrain::GriddedField>> displacement, velocity_u, velocity_v;
   std::string crs_wkt;  // the scene's CRS (the bed raster's, or another raster's); empty: none
 };
 
@@ -85,6 +93,8 @@ maps::CellAverages map_reader(const Scenario& scene, const Terrain& terrain,
 maps::CellAverages gauge_reader(const Scenario& scene, const Terrain& terrain,
                                 const swe::RegularGrid& grid, const Point& point);
 inline constexpr double kGaugeSpacings = 4.0;
+inline constexpr double kGaugeLeastSpacings = 2.0;
+inline constexpr double kGaugeSubPointsPerSpacing = 8.0;
 
 // Model ns. The tank: the domain's plan (its x range; and y range in 3D) from the floor (the
 // level bed's elevation, 0 without a bed) up to ns.tank_height; each water body a box from

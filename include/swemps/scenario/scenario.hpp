@@ -17,6 +17,7 @@
 #include "swemps/splitting/particle_merging.hpp"
 #include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/settings.hpp"
+#include "swemps/tsunami/okada.hpp"
 
 namespace swemps::scenario {
 
@@ -53,6 +54,27 @@ struct DepthRaster {
 };
 using WaterDepth = std::variant<UniformDepth, LevelSurface, DepthRaster>;
 
+// What a body's surface starts with besides its depth (a tsunami's initial condition): a
+// rise eta(x, y) added to the depth where the undisturbed body holds water.
+// A solitary wave (tsunami/solitary_wave.hpp); its velocity is added to the body's.
+struct SolitaryWaveStart {
+  double height_m = 0.0;
+  // Absent: the still depth under the crest point (the body's depth, or its level less the bed).
+  std::optional<double> still_depth_m;
+  Point crest_m{0.0, 0.0};
+  std::array<double, 2> direction{1.0, 0.0};  // non-zero
+};
+// A raster of the rise (m); nodata cells and points off the raster do not rise.
+struct DisplacementRaster {
+  RasterSpec raster;
+};
+using SurfaceDisplacement = std::variant<std::monostate, SolitaryWaveStart, DisplacementRaster>;
+// The starting velocity read from two rasters (m/s), east and north; nodata cells and points
+// off a raster are still in that component.
+struct VelocityRasters {
+  RasterSpec u, v;
+};
+
 // How the particles' volumes are set.
 enum class VolumeRule {
   geometric,  // V = depth x lattice cell area: the shape's volume exactly
@@ -68,6 +90,9 @@ struct WaterBody {
   // Level surface and depth raster: lattice points this shallow or dry get no particle.
   double min_depth_m = 0.01;
   std::array<double, 2> velocity_m_s{0.0, 0.0};
+  // Set: the velocity comes from these rasters instead of velocity_m_s.
+  std::optional<VelocityRasters> velocity_rasters;
+  SurfaceDisplacement displacement;  // uniform depths and levels only
   double spacing_m = 0.0;
   VolumeRule volumes = VolumeRule::geometric;
 };
@@ -156,6 +181,20 @@ struct Output {
   bool raster_cog = true;
 };
 
+// An earthquake's rectangular fault planes (tsunami/okada.hpp): the floor's vertical
+// displacement is added to the bed at t = 0 (an instantaneous rupture), and the water over it
+// keeps its depth, so that its surface rises and falls with the floor.
+struct FaultPlaneSpec {
+  // Strike clockwise from the map's +y; top_centre_m set by build when the position is given
+  // as longitude and latitude, and the strike then turned from true north to the map's.
+  tsunami::FaultPlane plane;
+  std::optional<Point> longitude_latitude;  // degrees east, north
+};
+struct FaultSourceSpec {
+  std::vector<FaultPlaneSpec> planes;  // >= 1
+  double poisson_ratio = 0.25;
+};
+
 // Which equations run the scene.
 enum class Model {
   swe,  // depth-integrated shallow water over the plan (x, y): particles, walls, effects
@@ -192,6 +231,7 @@ struct Scenario {
   std::optional<splitting::MergingSettings> merging;      // absent: no merging
   std::vector<Inflow> inflows;
   std::vector<Outflow> outflows;
+  std::optional<FaultSourceSpec> fault_source;  // absent: none
   Output output;
   Model model = Model::swe;
   // Model ns: 2 = a vertical x-z section along x (the scene's y is ignored), 3 = x, y, z.

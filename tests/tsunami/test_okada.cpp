@@ -1,0 +1,92 @@
+// Okada (1985)'s vertical surface displacement against the paper's own check values (Table 2,
+// the finite rectangular source: x = 2, y = 3, d = 4, dip 70 degrees, L = 3, W = 2, a Poisson
+// solid), and the fault planes placed on the map as catalogues give them.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "swemps/tsunami/okada.hpp"
+
+using namespace swemps::tsunami;
+
+namespace {
+constexpr double kDip = 70.0 * std::numbers::pi / 180.0;
+}
+
+TEST_CASE("Okada's vertical displacement matches the paper's check values", "[tsunami]") {
+  // Table 2, case 2: u_z = -2.747e-3 (strike slip), -3.564e-2 (dip slip), 3.214e-3 (tensile),
+  // per unit dislocation, to the table's four digits.
+  CHECK(okada_vertical(2, 3, 4, kDip, 3, 2, 1, 0, 0, 0.5) == Approx(-2.747e-3).epsilon(2e-4));
+  CHECK(okada_vertical(2, 3, 4, kDip, 3, 2, 0, 1, 0, 0.5) == Approx(-3.564e-2).epsilon(2e-4));
+  CHECK(okada_vertical(2, 3, 4, kDip, 3, 2, 0, 0, 1, 0.5) == Approx(3.214e-3).epsilon(2e-4));
+  // Linear in the dislocation.
+  CHECK(okada_vertical(2, 3, 4, kDip, 3, 2, 2, -1, 0.5, 0.5) ==
+        Approx(2 * -2.747e-3 + 3.564e-2 + 0.5 * 3.214e-3).epsilon(1e-3));
+}
+
+TEST_CASE("a vertical fault's displacement is the limit of steep ones", "[tsunami]") {
+  // Eq 29 replaces I4 and I5 where cos(dip) = 0; at 89.9999 degrees eq 28 must agree.
+  const double steep = (90.0 - 1e-4) * std::numbers::pi / 180.0;
+  for (const double u2 : {0.0, 1.0}) {
+    const double u1 = 1.0 - u2;
+    const double vertical = okada_vertical(2, 3, 4, std::numbers::pi / 2, 3, 2, u1, u2, 0, 0.5);
+    const double near = okada_vertical(2, 3, 4, steep, 3, 2, u1, u2, 0, 0.5);
+    CHECK(vertical == Approx(near).epsilon(1e-4));
+  }
+}
+
+TEST_CASE("a fault plane on the map: a thrust lifts its hanging wall", "[tsunami]") {
+  // A thrust striking north (+y), dipping 20 degrees east, its top edge 5 km deep, centred at
+  // the origin, 100 km x 50 km, 5 m of slip.
+  const FaultPlane thrust{{0.0, 0.0}, 5000.0, 0.0, 20.0, 90.0, 5.0, 100000.0, 50000.0};
+  const FaultSource source({thrust});
+  // Over the plane, east of its top edge: uplift of the order of the slip's vertical part
+  // (1.25 m); beyond its lower edge (47 km east), the trough a thrust leaves (-0.61 m at 60 km,
+  // measured); on the footwall, a little uplift fading west (0.06 m at 20 km).
+  const double over = source.vertical_displacement(20000.0, 0.0);
+  CHECK(over > 0.5);
+  CHECK(over < 5.0 * std::sin(20.0 * std::numbers::pi / 180.0) + 1.0);
+  CHECK(source.vertical_displacement(60000.0, 0.0) < -0.3);
+  CHECK(std::abs(source.vertical_displacement(-20000.0, 0.0)) < 0.1 * over);
+  // Symmetric about the plane's midline, and fading far away.
+  CHECK(source.vertical_displacement(20000.0, 30000.0) ==
+        Approx(source.vertical_displacement(20000.0, -30000.0)).epsilon(1e-9));
+  CHECK(std::abs(source.vertical_displacement(500000.0, 0.0)) < 1e-2);
+  // Struck south from the same point, the plane dips west (to the right of its strike): the
+  // same plane turned half round, its uplift in the west.
+  const FaultPlane turned{{0.0, 0.0}, 5000.0, 180.0, 20.0, 90.0, 5.0, 100000.0, 50000.0};
+  CHECK(FaultSource({turned}).vertical_displacement(-20000.0, 0.0) == Approx(over).epsilon(1e-9));
+  // Two planes add up.
+  const FaultSource both({thrust, turned});
+  CHECK(both.vertical_displacement(7000.0, 3000.0) ==
+        Approx(source.vertical_displacement(7000.0, 3000.0) +
+               FaultSource({turned}).vertical_displacement(7000.0, 3000.0))
+            .epsilon(1e-12));
+  // The gradient is the displacement's.
+  const auto g = source.gradient(20000.0, 10000.0);
+  const double h = 10.0;
+  CHECK(g[0] == Approx((source.vertical_displacement(20000.0 + h, 10000.0) -
+                        source.vertical_displacement(20000.0 - h, 10000.0)) /
+                       (2 * h))
+                    .epsilon(1e-5));
+}
+
+TEST_CASE("a fault source refuses planes that cannot be", "[tsunami]") {
+  const FaultPlane good{{0.0, 0.0}, 5000.0, 0.0, 20.0, 90.0, 5.0, 1e5, 5e4};
+  auto with = [&](auto change) {
+    FaultPlane f = good;
+    change(f);
+    return std::vector<FaultPlane>{f};
+  };
+  CHECK_THROWS_AS(FaultSource(with([](FaultPlane& f) { f.dip_deg = 0.0; })), std::invalid_argument);
+  CHECK_THROWS_AS(FaultSource(with([](FaultPlane& f) { f.dip_deg = 91.0; })),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(FaultSource(with([](FaultPlane& f) { f.width_m = 0.0; })), std::invalid_argument);
+  CHECK_THROWS_AS(FaultSource(with([](FaultPlane& f) { f.top_depth_m = -1.0; })),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(FaultSource(with([](FaultPlane& f) { f.slip_m = NAN; })), std::invalid_argument);
+  CHECK_THROWS_AS(FaultSource({good}, 0.5), std::invalid_argument);
+  CHECK_THROWS_AS(FaultSource({}), std::invalid_argument);
+}
