@@ -29,8 +29,11 @@ ProjectedPoint project_geographic(double longitude_deg, double latitude_deg,
     throw std::runtime_error("the scene's CRS is not one GDAL reads");
   }
   target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  const std::unique_ptr<OGRCoordinateTransformation> transform(
-      OGRCreateCoordinateTransformation(&geographic, &target));
+  const auto destroy = [](OGRCoordinateTransformation* t) {
+    OGRCoordinateTransformation::DestroyCT(t);
+  };
+  const std::unique_ptr<OGRCoordinateTransformation, decltype(destroy)> transform(
+      OGRCreateCoordinateTransformation(&geographic, &target), destroy);
   if (!transform) throw std::runtime_error("no transformation from longitude/latitude to the CRS");
   double x[2] = {longitude_deg, longitude_deg};
   double y[2] = {latitude_deg, latitude_deg + kNorthStepDeg};

@@ -503,10 +503,23 @@ void read_starting_rasters(const Scenario& scene, SceneCrs& crs, Terrain& terrai
   }
 }
 
-// The floor after an instantaneous rupture of the scene's fault planes. Planes placed by
-// longitude and latitude are projected to the scene's CRS, their strike turned from true
-// north to the map's; every plane's top edge midpoint must lie in the domain.
-void rupture(const FaultSourceSpec& spec, Terrain& terrain) {
+// The cells a fault source's displacement is sampled on: the finest particle spacing of the
+// scene's water and inflows, but no more than kMaxDisplacementCells over the domain (a grid the
+// particles cannot resolve finer than their own spacing; docs/tsunami.md, "Fault sources").
+double displacement_cell(const Scenario& scene, const Rectangle& domain) {
+  constexpr double kMaxDisplacementCells = 4e6;
+  double finest = std::numeric_limits<double>::infinity();
+  for (const auto& w : scene.water) finest = std::min(finest, w.spacing_m);
+  for (const auto& in : scene.inflows) finest = std::min(finest, in.spacing_m);
+  const double area = (domain.x_max - domain.x_min) * (domain.y_max - domain.y_min);
+  return std::max(finest, std::sqrt(area / kMaxDisplacementCells));
+}
+
+// The floor after an instantaneous rupture of the scene's fault planes, its displacement
+// sampled on cells of `cell_m` (tsunami::sample_displacement). Planes placed by longitude and
+// latitude are projected to the scene's CRS, their strike turned from true north to the
+// map's; every plane's top edge midpoint must lie in the domain.
+void rupture(const FaultSourceSpec& spec, double cell_m, Terrain& terrain) {
   std::vector<tsunami::FaultPlane> planes;
   for (std::size_t i = 0; i < spec.planes.size(); ++i) {
     tsunami::FaultPlane plane = spec.planes[i].plane;
@@ -540,7 +553,10 @@ void rupture(const FaultSourceSpec& spec, Terrain& terrain) {
     throw ScenarioError("/fault_source", e.what(), "fault planes the source accepts");
   }
   terrain.bed_before_rupture = terrain.bed;
-  terrain.bed = std::make_shared<tsunami::RupturedBed>(terrain.bed, terrain.fault_source);
+  const Rectangle& d = terrain.domain;
+  terrain.bed = std::make_shared<tsunami::RupturedBed>(
+      terrain.bed, tsunami::sample_displacement(*terrain.fault_source, d.x_min, d.x_max, d.y_min,
+                                                d.y_max, cell_m));
 }
 
 }  // namespace
@@ -584,7 +600,9 @@ Terrain read_terrain(const Scenario& scene) {
   }
   read_starting_rasters(scene, crs, terrain);
   terrain.crs_wkt = crs.wkt();
-  if (scene.fault_source) rupture(*scene.fault_source, terrain);
+  if (scene.fault_source) {
+    rupture(*scene.fault_source, displacement_cell(scene, terrain.domain), terrain);
+  }
   return terrain;
 }
 

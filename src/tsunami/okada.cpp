@@ -114,4 +114,30 @@ std::array<double, 2> FaultSource::gradient(double x_m, double y_m) const {
           (vertical_displacement(x_m, y_m + h) - vertical_displacement(x_m, y_m - h)) / (2 * h)};
 }
 
+terrain::GriddedField sample_displacement(const FaultSource& source, double x_min, double x_max,
+                                          double y_min, double y_max, double cell_m) {
+  if (!(cell_m > 0.0) || !(x_max > x_min) || !(y_max > y_min))
+    throw std::invalid_argument("fault source: an empty grid to sample the displacement on");
+  // One cell beyond each side, so that bilinear reads inside the bounds never clamp.
+  const auto cells = [&](double extent) {
+    return static_cast<std::size_t>(std::ceil(extent / cell_m)) + 2;
+  };
+  terrain::GridGeometry g;
+  g.columns = cells(x_max - x_min);
+  g.rows = cells(y_max - y_min);
+  g.cell_width = (x_max - x_min) / static_cast<double>(g.columns - 2);
+  g.cell_height = (y_max - y_min) / static_cast<double>(g.rows - 2);
+  g.x_left = x_min - g.cell_width;
+  g.y_top = y_max + g.cell_height;
+  std::vector<double> uz(g.columns * g.rows);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t row = 0; row < g.rows; ++row) {
+    for (std::size_t col = 0; col < g.columns; ++col) {
+      uz[row * g.columns + col] =
+          source.vertical_displacement(g.cell_centre_x(col), g.cell_centre_y(row));
+    }
+  }
+  return terrain::GriddedField(g, std::move(uz), {}, "sea-floor displacement");
+}
+
 }  // namespace swemps::tsunami

@@ -43,7 +43,9 @@ TEST_CASE("a fault source lifts the floor and the sea over it", "[scenario][tsun
   double highest = 0.0;
   for (std::size_t i = 0; i < p.fluid_count(); ++i) {
     const double uz = source.vertical_displacement(p.x[i], p.y[i]);
-    // The floor under the particle is the floor after the rupture; the water keeps its 2 km.
+    // The floor under the particle is the floor after the rupture (read from the displacement
+    // sampled at the 4 km spacing, whose cell centres the lattice's points are: exact there);
+    // the water keeps its 2 km.
     CHECK(p.bed[i] == Approx(-2000.0 + uz).epsilon(1e-12));
     CHECK(p.volume[i] / (4000.0 * 4000.0) == Approx(2000.0).epsilon(1e-12));
     CHECK(built.terrain.bed->elevation(p.x[i], p.y[i]) == Approx(-2000.0 + uz).epsilon(1e-12));

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "swemps/swe/bed.hpp"
+#include "swemps/terrain/gridded_field.hpp"
 
 namespace swemps::tsunami {
 
@@ -61,28 +62,36 @@ class FaultSource {
   double step_m_;
 };
 
+// The source's vertical displacement sampled at the centres of a grid of square cells of side
+// `cell_m` (at most) covering [x_min, x_max] x [y_min, y_max] and a cell beyond, computed once
+// in parallel: the floor is read at every particle every step, and Okada's u_z costs 234 ns a
+// plane, a bilinear read 32 ns (measured), where a finite-fault model has hundreds of planes.
+// The displacement varies over the source's depth, kilometres, and the particles resolve it
+// at their spacing, so a grid at the finest particle spacing loses nothing they can see.
+terrain::GriddedField sample_displacement(const FaultSource& source, double x_min, double x_max,
+                                          double y_min, double y_max, double cell_m);
+
 // The sea floor after an instantaneous rupture: the bed before it (null: flat at z = 0) raised
-// by the source's vertical displacement. Water keeps its depth over it, so its surface rises
-// with the floor (docs/tsunami.md, "Fault sources").
+// by the source's vertical displacement, read from its sampled grid. Water keeps its depth
+// over it, so its surface rises with the floor (docs/tsunami.md, "Fault sources").
 class RupturedBed final : public swe::BedSource {
  public:
-  RupturedBed(std::shared_ptr<const swe::BedSource> before,
-              std::shared_ptr<const FaultSource> source)
-      : before_(std::move(before)), source_(std::move(source)) {}
+  RupturedBed(std::shared_ptr<const swe::BedSource> before, terrain::GriddedField displacement)
+      : before_(std::move(before)), displacement_(std::move(displacement)) {}
   double elevation(double x_m, double y_m) const override {
-    return (before_ ? before_->elevation(x_m, y_m) : 0.0) +
-           source_->vertical_displacement(x_m, y_m);
+    return (before_ ? before_->elevation(x_m, y_m) : 0.0) + displacement_.sample(x_m, y_m);
   }
   std::array<double, 2> gradient(double x_m, double y_m) const override {
-    const auto lift = source_->gradient(x_m, y_m);
+    const auto lift = displacement_.gradient(x_m, y_m);
     if (!before_) return lift;
     const auto base = before_->gradient(x_m, y_m);
     return {base[0] + lift[0], base[1] + lift[1]};
   }
+  const terrain::GriddedField& displacement() const { return displacement_; }
 
  private:
   std::shared_ptr<const swe::BedSource> before_;
-  std::shared_ptr<const FaultSource> source_;
+  terrain::GriddedField displacement_;
 };
 
 }  // namespace swemps::tsunami
