@@ -81,9 +81,8 @@ SolitaryWaveStart read_solitary_wave(const json& v, const std::string& path) {
     throw ScenarioError(o.path("direction"), kMissing,
                         "an [x, y] vector, the way the wave travels");
   }
-  wave.direction = pair(*direction, o.path("direction"),
-                        "an [x, y] vector, the way the wave "
-                        "travels");
+  wave.direction =
+      pair(*direction, o.path("direction"), "an [x, y] vector, the way the wave travels");
   if (wave.direction[0] == 0.0 && wave.direction[1] == 0.0) {
     throw ScenarioError(o.path("direction"), "[0, 0]",
                         "a non-zero [x, y] vector, the way the wave travels");

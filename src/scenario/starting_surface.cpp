@@ -45,11 +45,9 @@ StartingSurface::StartingSurface(const Scenario& scene, const Terrain& terrain, 
   const double depth = still_depth_under_crest(body, *spec, terrain);
   if (!(depth > spec->height_m)) {
     const std::string path = "/water/" + std::to_string(index) + "/solitary_wave";
-    throw ScenarioError(path,
-                        "still water " + fmt(depth) +
-                            " m deep under the crest point, "
-                            "for a wave " +
-                            fmt(spec->height_m) + " m high",
+    const std::string found = "still water " + fmt(depth) + " m deep under the crest point, " +
+                              "for a wave " + fmt(spec->height_m) + " m high";
+    throw ScenarioError(path, found,
                         "a crest over water deeper than the wave is high, or a \"depth\" giving "
                         "the still depth the wave's shape is set by");
   }
