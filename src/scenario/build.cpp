@@ -508,9 +508,7 @@ void read_starting_rasters(const Scenario& scene, SceneCrs& crs, Terrain& terrai
 // particles cannot resolve finer than their own spacing; docs/tsunami.md, "Fault sources").
 double displacement_cell(const Scenario& scene, const Rectangle& domain) {
   constexpr double kMaxDisplacementCells = 4e6;
-  double finest = std::numeric_limits<double>::infinity();
-  for (const auto& w : scene.water) finest = std::min(finest, w.spacing_m);
-  for (const auto& in : scene.inflows) finest = std::min(finest, in.spacing_m);
+  const double finest = finest_spacing(scene);
   const double area = (domain.x_max - domain.x_min) * (domain.y_max - domain.y_min);
   return std::max(finest, std::sqrt(area / kMaxDisplacementCells));
 }

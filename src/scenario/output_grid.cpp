@@ -12,9 +12,6 @@ namespace swemps::scenario {
 
 using json_reading::fmt;
 
-namespace {
-
-// The smallest spacing the scene creates particles at; 0 when it creates none.
 double finest_spacing(const Scenario& scene) {
   double finest = 0.0;
   const auto consider = [&](double spacing) {
@@ -24,6 +21,8 @@ double finest_spacing(const Scenario& scene) {
   for (const auto& in : scene.inflows) consider(in.spacing_m);
   return finest;
 }
+
+namespace {
 
 maps::Bounds domain_bounds(const Terrain& terrain) {
   const auto& d = terrain.domain;

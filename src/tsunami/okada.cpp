@@ -64,11 +64,10 @@ double okada_vertical(double x, double y, double depth, double dip_rad, double l
 }
 
 FaultSource::FaultSource(std::vector<FaultPlane> planes, double poisson_ratio)
-    : planes_(std::move(planes)), alpha_(1.0 - 2.0 * poisson_ratio), step_m_(0.0) {
+    : planes_(std::move(planes)), alpha_(1.0 - 2.0 * poisson_ratio) {
   if (!(poisson_ratio > 0.0 && poisson_ratio < 0.5))
     throw std::invalid_argument("fault source: Poisson's ratio must lie in (0, 0.5)");
   if (planes_.empty()) throw std::invalid_argument("fault source: no fault plane");
-  double narrowest = 0.0;
   for (const FaultPlane& f : planes_) {
     const bool all_finite = finite(f.top_centre_m[0]) && finite(f.top_centre_m[1]) &&
                             finite(f.top_depth_m) && finite(f.strike_deg) && finite(f.dip_deg) &&
@@ -81,9 +80,7 @@ FaultSource::FaultSource(std::vector<FaultPlane> planes, double poisson_ratio)
       throw std::invalid_argument("fault source: a plane's dip must lie in (0, 90] degrees");
     if (!(f.top_depth_m >= 0.0) || !(f.slip_m >= 0.0))
       throw std::invalid_argument("fault source: a plane's depth and slip must be >= 0");
-    narrowest = narrowest == 0.0 ? f.width_m : std::min(narrowest, f.width_m);
   }
-  step_m_ = 1e-3 * narrowest;
 }
 
 double FaultSource::vertical_displacement(double x_m, double y_m) const {
@@ -106,12 +103,6 @@ double FaultSource::vertical_displacement(double x_m, double y_m) const {
                          f.slip_m * std::sin(rake), 0.0, alpha_);
   }
   return uz;
-}
-
-std::array<double, 2> FaultSource::gradient(double x_m, double y_m) const {
-  const double h = step_m_;
-  return {(vertical_displacement(x_m + h, y_m) - vertical_displacement(x_m - h, y_m)) / (2 * h),
-          (vertical_displacement(x_m, y_m + h) - vertical_displacement(x_m, y_m - h)) / (2 * h)};
 }
 
 terrain::GriddedField sample_displacement(const FaultSource& source, double x_min, double x_max,

@@ -65,20 +65,14 @@ TEST_CASE("a fault plane on the map: a thrust lifts its hanging wall", "[tsunami
         Approx(source.vertical_displacement(7000.0, 3000.0) +
                FaultSource({turned}).vertical_displacement(7000.0, 3000.0))
             .epsilon(1e-12));
-  // The gradient is the displacement's.
-  const auto g = source.gradient(20000.0, 10000.0);
-  const double h = 10.0;
-  CHECK(g[0] == Approx((source.vertical_displacement(20000.0 + h, 10000.0) -
-                        source.vertical_displacement(20000.0 - h, 10000.0)) /
-                       (2 * h))
-                    .epsilon(1e-5));
 }
 
 TEST_CASE("the floor after a rupture reads the displacement sampled once", "[tsunami]") {
   const FaultPlane thrust{{0.0, 0.0}, 5000.0, 0.0, 20.0, 90.0, 5.0, 100000.0, 50000.0};
   const FaultSource source({thrust});
   // 1 km cells over 200 km x 200 km; the displacement varies over the 5 km of the plane's top
-  // depth and more, so bilinear reads between centres are within a centimetre of Okada's.
+  // depth and more, so bilinear reads between centres stay within 2 cm of Okada's (1.5 cm
+  // measured).
   const auto grid = sample_displacement(source, -100000.0, 100000.0, -100000.0, 100000.0, 1000.0);
   const RupturedBed bed(
       std::make_shared<swemps::swe::PlaneBed>(-3000.0, std::array{0.0, 0.0}, std::array{0.0, 0.0}),
@@ -91,6 +85,11 @@ TEST_CASE("the floor after a rupture reads the displacement sampled once", "[tsu
     }
   }
   CHECK(worst < 0.02);
+  // The floor's slope is the flat bed's (none) plus the sampled displacement's own.
+  const auto slope = bed.gradient(20300.0, 10700.0);
+  const auto lift = grid.gradient(20300.0, 10700.0);
+  CHECK(slope[0] == lift[0]);
+  CHECK(slope[1] == lift[1]);
   // At a cell centre the read is Okada's own value.
   const double cx = grid.geometry().cell_centre_x(57), cy = grid.geometry().cell_centre_y(88);
   CHECK(bed.elevation(cx, cy) ==

@@ -79,6 +79,10 @@ swe::Simulation make_simulation(const Scenario& scene);
 // when no raster cell lies whole inside the bounds.
 swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain);
 
+// The smallest spacing the scene creates particles at (water bodies and inflows); 0 when it
+// creates none.
+double finest_spacing(const Scenario& scene);
+
 // How the scene's maps read its particles on `grid`: cell averages of the particles' water
 // over the scene's bed, within the domain, sampled finely enough for the finest spacing the
 // scene creates particles at.

@@ -50,16 +50,11 @@ class FaultSource {
   explicit FaultSource(std::vector<FaultPlane> planes, double poisson_ratio = 0.25);
 
   double vertical_displacement(double x_m, double y_m) const;
-  // d u_z / dx and d u_z / dy, by central differences a thousandth of the smallest plane's
-  // width apart (u_z is smooth away from a plane that breaks the surface).
-  std::array<double, 2> gradient(double x_m, double y_m) const;
-
   const std::vector<FaultPlane>& planes() const { return planes_; }
 
  private:
   std::vector<FaultPlane> planes_;
   double alpha_;
-  double step_m_;
 };
 
 // The source's vertical displacement sampled at the centres of a grid of square cells of side
