@@ -20,7 +20,30 @@ using csv::trim;
 
 namespace {
 
-enum class Column { time, discharge };
+enum class Column { time, value };
+
+// What the second column of a series holds: its names, its units and its sign.
+struct ValueColumn {
+  std::string_view what;                // "discharge", in messages
+  std::vector<std::string_view> names;  // lower case, e.g. "discharge", "q"
+  std::string_view named;               // the names as messages list them
+  std::vector<std::string_view> units;  // lower case, spaces removed
+  std::string_view unit;                // the unit in messages
+  std::string_view example_header;      // a header that works
+  bool non_negative = false;
+};
+
+const ValueColumn kDischarge{"discharge",
+                             {"discharge", "q"},
+                             "discharge, Q",
+                             {"m3/s", "m^3/s", "m3_s", "m3s-1"},
+                             "m3/s",
+                             "time_s,discharge_m3_s",
+                             true};
+
+const ValueColumn kLevel{
+    "level", {"level", "eta", "elevation"}, "level, eta, elevation", {"m"}, "m", "time_s,level_m",
+    false};
 
 std::string lower_without_spaces(std::string_view s) {
   std::string out;
@@ -33,7 +56,8 @@ std::string lower_without_spaces(std::string_view s) {
 }
 
 // Which column a header name names, or nullopt with `why` set.
-std::optional<Column> column_named(std::string_view field, std::string& why) {
+std::optional<Column> column_named(std::string_view field, const ValueColumn& value,
+                                   std::string& why) {
   std::string name = lower_without_spaces(field);
   std::string unit;
   bool has_unit = false;
@@ -60,14 +84,15 @@ std::optional<Column> column_named(std::string_view field, std::string& why) {
     why = quoted + ": times must be in s, not '" + unit + "'";
     return std::nullopt;
   }
-  if (name == "discharge" || name == "q") {
-    if (!has_unit || unit == "m3/s" || unit == "m^3/s" || unit == "m3_s" || unit == "m3s-1") {
-      return Column::discharge;
-    }
-    why = quoted + ": discharges must be in m3/s, not '" + unit + "'";
+  if (std::find(value.names.begin(), value.names.end(), name) != value.names.end()) {
+    if (!has_unit || std::find(value.units.begin(), value.units.end(), unit) != value.units.end())
+      return Column::value;
+    why = quoted + ": " + std::string(value.what) + "s must be in " + std::string(value.unit) +
+          ", not '" + unit + "'";
     return std::nullopt;
   }
-  why = quoted + " is neither time (time, t) nor discharge (discharge, Q)";
+  why = quoted + " is neither time (time, t) nor " + std::string(value.what) + " (" +
+        std::string(value.named) + ")";
   return std::nullopt;
 }
 
@@ -88,15 +113,17 @@ std::optional<double> number(std::string_view field) {
   throw std::runtime_error(file + ":" + std::to_string(line_number) + ": " + problem);
 }
 
-}  // namespace
-
-std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::path& path) {
+// The (time, value) points of a two-column series file (hydrograph_csv.hpp says what is
+// accepted, for any value column).
+std::vector<std::array<double, 2>> read_series(const std::filesystem::path& path,
+                                               const ValueColumn& value) {
   const std::string file = path.string();
+  const std::string what(value.what);
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(file + ": cannot open the hydrograph file");
+  if (!in) throw std::runtime_error(file + ": cannot open the " + what + " series file");
 
   std::vector<std::array<double, 2>> points;
-  std::size_t time_column = 0;  // index of the time field; the discharge is the other one
+  std::size_t time_column = 0;  // index of the time field; the value is the other one
   bool have_header = false;
   std::string raw;
   for (std::size_t line_number = 1; std::getline(in, raw); ++line_number) {
@@ -106,18 +133,18 @@ std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::pa
     if (!have_header) {
       if (fields.size() != 2) {
         fail(file, line_number,
-             "the header must name two columns (time and discharge), found " +
+             "the header must name two columns (time and " + what + "), found " +
                  std::to_string(fields.size()));
       }
       if (number(fields[0]) && number(fields[1])) {
         fail(file, line_number,
-             "the first line holds numbers, not a header naming the columns (e.g. "
-             "'time_s,discharge_m3_s')");
+             "the first line holds numbers, not a header naming the columns (e.g. '" +
+                 std::string(value.example_header) + "')");
       }
       std::string why;
-      const auto first = column_named(fields[0], why);
+      const auto first = column_named(fields[0], value, why);
       if (!first) fail(file, line_number, why);
-      const auto second = column_named(fields[1], why);
+      const auto second = column_named(fields[1], value, why);
       if (!second) fail(file, line_number, why);
       if (*first == *second) fail(file, line_number, "the header names the same column twice");
       time_column = *first == Column::time ? 0 : 1;
@@ -133,25 +160,36 @@ std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::pa
       fail(file, line_number, "time '" + std::string(fields[time_column]) + "' is not a number");
     if (!q) {
       fail(file, line_number,
-           "discharge '" + std::string(fields[1 - time_column]) + "' is not a number");
+           what + " '" + std::string(fields[1 - time_column]) + "' is not a number");
     }
     if (!points.empty() && !(*t > points.back()[0])) {
       std::ostringstream msg;
       msg << "time " << *t << " s is not after the previous time " << points.back()[0] << " s";
       fail(file, line_number, msg.str());
     }
-    if (*q < 0.0) {
+    if (value.non_negative && *q < 0.0) {
       std::ostringstream msg;
-      msg << "discharge " << *q << " m3/s is negative";
+      msg << what << " " << *q << " " << value.unit << " is negative";
       fail(file, line_number, msg.str());
     }
     points.push_back({*t, *q});
   }
   if (!have_header) {
-    throw std::runtime_error(file + ": no header line (expected e.g. 'time_s,discharge_m3_s')");
+    throw std::runtime_error(file + ": no header line (expected e.g. '" +
+                             std::string(value.example_header) + "')");
   }
   if (points.empty()) throw std::runtime_error(file + ": no data lines after the header");
   return points;
+}
+
+}  // namespace
+
+std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::path& path) {
+  return read_series(path, kDischarge);
+}
+
+std::vector<std::array<double, 2>> read_level_csv(const std::filesystem::path& path) {
+  return read_series(path, kLevel);
 }
 
 }  // namespace swemps::io

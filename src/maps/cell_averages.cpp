@@ -303,14 +303,17 @@ CellFields CellAverages::fields(const particles::SweParticles& p,
   const std::size_t blocks = (n + kBlock - 1) / kBlock;
   if (shares_.size() < blocks) shares_.resize(blocks);
   if (ends_.size() < n) ends_.resize(n);
-  // Each fluid particle's ghosts, grouped by the particle they mirror (counting sort).
+  // Each fluid particle's mirror images behind walls, grouped by the particle they mirror
+  // (counting sort). The water an open boundary's ghosts stand for is beyond the domain: no
+  // cell of the map takes a share of it.
+  const std::size_t mirrors = p.mirror_end();
   ghost_start_.assign(n + 1, 0);
-  for (std::size_t g = n; g < p.size(); ++g) ++ghost_start_[p.source[g] + 1];
+  for (std::size_t g = n; g < mirrors; ++g) ++ghost_start_[p.source[g] + 1];
   for (std::size_t j = 0; j < n; ++j) ghost_start_[j + 1] += ghost_start_[j];
-  ghost_list_.resize(p.size() - n);
+  ghost_list_.resize(mirrors - n);
   {
     std::vector<std::size_t> next(ghost_start_.begin(), ghost_start_.end() - 1);
-    for (std::size_t g = n; g < p.size(); ++g) {
+    for (std::size_t g = n; g < mirrors; ++g) {
       ghost_list_[next[p.source[g]]++] = static_cast<std::uint32_t>(g);
     }
   }

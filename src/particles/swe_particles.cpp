@@ -66,6 +66,7 @@ void SweParticles::add_fluid(double px, double py, double pu, double pv, double 
   omega.push_back(1.0);
   source.push_back(own);
   ++fluid_count_;
+  mirror_end_ = fluid_count_;
 }
 
 void SweParticles::add_ghost(std::uint32_t from, double px, double py, double pu, double pv) {
@@ -86,9 +87,14 @@ void SweParticles::add_ghost(std::uint32_t from, double px, double py, double pu
   smoothing_length.push_back(smoothing_length[from]);
   omega.push_back(omega[from]);
   source.push_back(from);
+  if (!mirrors_closed_) mirror_end_ = size();
 }
 
-void SweParticles::drop_ghosts() { resize(fluid_count_); }
+void SweParticles::drop_ghosts() {
+  resize(fluid_count_);
+  mirror_end_ = fluid_count_;
+  mirrors_closed_ = false;
+}
 
 void SweParticles::resize(std::size_t n) {
   x.resize(n);
@@ -141,6 +147,7 @@ void SweParticles::remove(std::span<const std::uint8_t> flagged) {
     compact(*field, flagged);
   }
   fluid_count_ = x.size();
+  mirror_end_ = fluid_count_;
   source.resize(fluid_count_);
   std::iota(source.begin(), source.end(), std::uint32_t{0});
 }

@@ -11,14 +11,11 @@
 #include <stdexcept>
 #include <variant>
 
+#include "boundary_effects.hpp"
 #include "starting_surface.hpp"
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
-#include "swemps/boundaries/hydrograph.hpp"
-#include "swemps/boundaries/inflow_line.hpp"
-#include "swemps/boundaries/outflow_line.hpp"
 #include "swemps/io/geographic.hpp"
-#include "swemps/io/hydrograph_csv.hpp"
 #include "swemps/io/raster_reader.hpp"
 #include "swemps/particles/seeding.hpp"
 #include "swemps/scenario/memory_check.hpp"
@@ -54,13 +51,6 @@ std::string describe_box(const Rectangle& r) {
 
 std::string index_path(const std::string& array, std::size_t i) {
   return array + "/" + std::to_string(i);
-}
-
-// Relative slack for comparing map coordinates: coordinates in the millions (projected maps)
-// must not fail a comparison by a rounding error; at least 1e-9 m elsewhere.
-double slack_for(const Rectangle& r) {
-  return 1e-9 * std::max({1.0, std::abs(r.x_min), std::abs(r.x_max), std::abs(r.y_min),
-                          std::abs(r.y_max)});
 }
 
 Rectangle extent(const Field& field) {
@@ -414,67 +404,6 @@ boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
   return boundaries::GhostWalls(std::move(segments));
 }
 
-// ---------------------------------------------------------------------------------------------
-// Inflow and outflow
-
-// The unit normal of the line on the side of the domain's centre.
-std::array<double, 2> towards_centre(const Inflow& in, const Rectangle& domain,
-                                     const std::string& path) {
-  const auto& [a, b] = in.line;
-  const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
-  std::array<double, 2> normal{-(b[1] - a[1]) / length, (b[0] - a[0]) / length};
-  const double to_x = 0.5 * (domain.x_min + domain.x_max) - 0.5 * (a[0] + b[0]);
-  const double to_y = 0.5 * (domain.y_min + domain.y_max) - 0.5 * (a[1] + b[1]);
-  const double side = normal[0] * to_x + normal[1] * to_y;
-  if (std::abs(side) <= slack_for(domain)) {
-    throw ScenarioError(path, "a line whose extension runs through the domain's centre",
-                        "a \"direction\" saying which way the water enters");
-  }
-  if (side < 0.0) normal = {-normal[0], -normal[1]};
-  return normal;
-}
-
-std::unique_ptr<swe::Effect> make_inflow(const Inflow& in, std::size_t index,
-                                         const Terrain& terrain) {
-  const std::string path = index_path("/inflow", index);
-  std::vector<std::array<double, 2>> points;
-  if (const auto* table = std::get_if<std::vector<std::array<double, 2>>>(&in.hydrograph)) {
-    points = *table;
-  } else {
-    try {
-      points = io::read_hydrograph_csv(std::get<std::filesystem::path>(in.hydrograph));
-    } catch (const std::runtime_error& e) {
-      throw ScenarioError(path + "/hydrograph_csv", e.what(),
-                          "a CSV file of time (s) and discharge (m^3/s) columns");
-    }
-  }
-  boundaries::InflowLineSettings settings;
-  settings.name = in.name;
-  settings.from = in.line[0];
-  settings.to = in.line[1];
-  settings.direction =
-      in.direction ? *in.direction : towards_centre(in, terrain.domain, path + "/line");
-  settings.spacing_m = in.spacing_m;
-  settings.depth_m = in.depth_m;
-  settings.bed = terrain.bed;
-  try {
-    return std::make_unique<boundaries::InflowLine>(std::move(settings),
-                                                    boundaries::Hydrograph(std::move(points)));
-  } catch (const std::invalid_argument& e) {
-    throw ScenarioError(path, e.what(), "an inflow line the boundary accepts");
-  }
-}
-
-std::unique_ptr<swe::Effect> make_outflow(const std::vector<Outflow>& outflows) {
-  std::vector<boundaries::Polyline> lines;
-  for (const auto& outflow : outflows) lines.push_back(outflow.line);
-  try {
-    return std::make_unique<boundaries::OutflowLines>(std::move(lines));
-  } catch (const std::invalid_argument& e) {
-    throw ScenarioError("/outflow", e.what(), "outflow lines the boundary accepts");
-  }
-}
-
 // The rasters each water body's starting surface names: its rise and its velocity's
 // components, warped to the scene's CRS like the others.
 void read_starting_rasters(const Scenario& scene, SceneCrs& crs, Terrain& terrain) {
@@ -695,6 +624,12 @@ BuiltScene build(const Scenario& scene) {
   if (!scene.outflows.empty()) effects.push_back(make_outflow(scene.outflows));
   for (std::size_t i = 0; i < scene.inflows.size(); ++i) {
     effects.push_back(make_inflow(scene.inflows[i], i, terrain));
+  }
+  // Sea boundaries remove particles without reading the positions before the move; they come
+  // before the domain's edges, which would take the same particles without a word.
+  for (std::size_t i = 0; i < scene.sea_boundaries.size(); ++i) {
+    effects.push_back(
+        make_sea_boundary(scene.sea_boundaries[i], i, terrain, scene.walls, seeded.particles));
   }
   const auto& d = terrain.domain;
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(

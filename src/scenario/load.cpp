@@ -681,6 +681,12 @@ void check_within_domain(const Scenario& scene, const Rectangle& domain) {
     check_inside({line[0], line[1]}, domain, member_path(element_path("/inflow", i), "line"), true,
                  "an inflow line lying");
   }
+  for (std::size_t i = 0; i < scene.sea_boundaries.size(); ++i) {
+    const auto& line = scene.sea_boundaries[i].line;
+    check_inside({line[0], line[1]}, domain,
+                 member_path(element_path("/sea_boundaries", i), "line"), true,
+                 "a sea boundary lying");
+  }
   for (std::size_t i = 0; i < scene.output.gauges.size(); ++i) {
     check_inside({scene.output.gauges[i].position_m}, domain, element_path("/output/gauges", i),
                  false, "a gauge");
@@ -695,10 +701,10 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {
   const json root = parse_json(text);
   const DefaultsRecord as_read(root);
-  const Object o(root, "",
-                 {"name", "description", "gravity", "end_time", "numerics", "model", "dimension",
-                  "ns", "domain", "water", "walls", "bed", "friction", "splitting", "merging",
-                  "inflow", "outflow", "fault_source", "output"},
+  const Object o(root, "", {"name",   "description", "gravity",      "end_time",       "numerics",
+                            "model",  "dimension",   "ns",           "domain",         "water",
+                            "walls",  "bed",         "friction",     "splitting",      "merging",
+                            "inflow", "outflow",     "fault_source", "sea_boundaries", "output"},
                  "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
@@ -746,6 +752,12 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   }
   s.outflows = read_outflows(o.find("outflow"));
   s.fault_source = read_fault_source(o.find("fault_source"));
+  s.sea_boundaries = read_sea_boundaries(o.find("sea_boundaries"), s.water, base_dir);
+  if (!s.sea_boundaries.empty() && s.numerics.scheme == swe::SchemeKind::seed) {
+    // The boundary's water continues the lattice as the conservative scheme sums it.
+    throw ScenarioError("/sea_boundaries", "sea boundaries under the seed scheme",
+                        "the conservative scheme (the default) for a scene with sea boundaries");
+  }
   check_crs_keys(s);
   s.output = read_output(o.find("output"), s, base_dir);
   if (domain) check_within_domain(s, *domain);

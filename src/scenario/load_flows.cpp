@@ -130,19 +130,24 @@ std::vector<Inflow> read_inflows(const json* v, const std::vector<WaterBody>& wa
   const std::string path = "/inflow";
   if (!v->is_array()) throw ScenarioError(path, describe(*v), "an array of inflow lines");
   std::vector<Inflow> out;
+  std::vector<std::string> names;
   for (std::size_t i = 0; i < v->size(); ++i) {
     Inflow in = read_inflow((*v)[i], element_path(path, i), i, water, base_dir);
-    // Names tell the inflows apart in the run's report.
-    for (std::size_t k = 0; k < out.size(); ++k) {
-      if (out[k].name != in.name) continue;
-      throw ScenarioError(
-          member_path(element_path(path, i), "name"),
-          "the name " + literal(in.name) + " again (inflow " + std::to_string(k) + " has it)",
-          "a name no other inflow has");
-    }
+    check_new_name(names, in.name, path, i, "inflow");
+    names.push_back(in.name);
     out.push_back(std::move(in));
   }
   return out;
+}
+
+void check_new_name(const std::vector<std::string>& names, const std::string& name,
+                    const std::string& array_path, std::size_t index, const std::string& what) {
+  const auto earlier = std::find(names.begin(), names.end(), name);
+  if (earlier == names.end()) return;
+  throw ScenarioError(member_path(element_path(array_path, index), "name"),
+                      "the name " + literal(name) + " again (" + what + " " +
+                          std::to_string(earlier - names.begin()) + " has it)",
+                      "a name no other " + what + " has");
 }
 
 std::vector<Outflow> read_outflows(const json* v) {

@@ -370,6 +370,11 @@ void check_ns_scene(const Scenario& s) {
     throw ScenarioError("/outflow", std::to_string(s.outflows.size()) + " outflow lines",
                         "no \"outflow\" (" + unsupported("outflow") + ")");
   }
+  if (!s.sea_boundaries.empty()) {
+    throw ScenarioError("/sea_boundaries",
+                        std::to_string(s.sea_boundaries.size()) + " sea boundaries",
+                        "no \"sea_boundaries\" (" + unsupported("sea boundaries") + ")");
+  }
   if (s.water.empty()) {
     throw ScenarioError("/water", "an empty array",
                         "at least one water body (model ns starts from water in the tank)");

@@ -28,6 +28,12 @@ void check_distinct_neighbours(const std::vector<Point>& pts, const std::string&
 std::filesystem::path file_path(const json_reading::Object& o, std::string_view key,
                                 const std::string& what, const std::filesystem::path& base_dir);
 
+// Names tell the entries of an array (inflows, sea boundaries) apart in the run's report:
+// entry `index` of `array_path`, named `name`, must not repeat the name of one before it
+// (`names`). `what` is the entry's kind, as "inflow".
+void check_new_name(const std::vector<std::string>& names, const std::string& name,
+                    const std::string& array_path, std::size_t index, const std::string& what);
+
 // Shapes and places (load.cpp): a box object; a simple polygon of at least 3 points; a box's
 // four corners; points that must lie inside the domain (`vertex_paths` points an error at the
 // vertex, `what` names the thing).
@@ -67,6 +73,11 @@ std::vector<Outflow> read_outflows(const json_reading::json* v);
 
 // The "fault_source" section (load_tsunami.cpp); absent: none.
 std::optional<FaultSourceSpec> read_fault_source(const json_reading::json* v);
+// The "sea_boundaries" section (load_tsunami.cpp); a boundary's spacing defaults to the finest
+// of the water's.
+std::vector<SeaBoundarySpec> read_sea_boundaries(const json_reading::json* v,
+                                                 const std::vector<WaterBody>& water,
+                                                 const std::filesystem::path& base_dir);
 
 // The "output" section, read after everything it refers to (load_output.cpp).
 Output read_output(const json_reading::json* v, const Scenario& scene,

@@ -245,7 +245,8 @@ namespace {
 // to itself exactly there (the wall is the perpendicular bisector of the two). Without them a
 // point next to a wall would miss the half of its kernel that lies behind the wall, and read
 // half the depth; with them, uniform water reads its depth up to the wall, and the field still
-// integrates to the particles' volume over the fluid side.
+// integrates to the particles' volume over the fluid side. An open boundary's ghosts
+// (SweParticles::mirror_end) are water beyond the line and count wherever they reach.
 //
 // The cells are sized for the typical support (neighbors::typical_radius), not the
 // largest: the few wide particles of a thinning front would otherwise widen every cell and
@@ -312,7 +313,7 @@ class PointSampler {
       const double dx = p_.x[j] - x, dy = p_.y[j] - y;
       const double r2 = dx * dx + dy * dy;
       if (!(r2 < support * support)) return;
-      if (j >= p_.fluid_count()) {
+      if (j >= p_.fluid_count() && j < p_.mirror_end()) {
         const std::uint32_t i = p_.source[j];
         const double ix = p_.x[i] - x, iy = p_.y[i] - y;
         if (!(ix * ix + iy * iy < r2)) return;  // the point is behind the wall
@@ -388,7 +389,7 @@ void scatter_onto_grid(const SweParticles& p, const ParticleKernel& w, const Reg
         if (k0 > k1 || r.i0 > r.i1) continue;
         const double hj = p.smoothing_length[j];
         const double support = ParticleKernel::support(hj);
-        const bool ghost = j >= fluid;
+        const bool ghost = j >= fluid && j < p.mirror_end();
         const std::size_t source = ghost ? p.source[j] : j;
         for (long k = k0; k <= k1; ++k) {
           const double y = grid.y0 + static_cast<double>(k) * grid.dy;

@@ -101,6 +101,9 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
   if (particles_.ghost_count() != 0)
     throw std::invalid_argument("simulation: ghosts in the initial state");
   ledger_.initial_m3 = particles_.total_fluid_volume();
+  for (std::size_t k = 0; k < effects_.size(); ++k) {
+    if (effects_[k]->adds_ghosts()) ghost_effects_.push_back(k);
+  }
 }
 
 // Non-finite values are found in passes the step makes anyway; values derive from one

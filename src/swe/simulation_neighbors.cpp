@@ -70,6 +70,9 @@ void Simulation::add_ghosts_and_neighbors() {
   {
     ScopedTimer timer(phase_times_.walls);
     walls_.add_ghosts(particles_, reach);
+    particles_.close_mirror_images();
+    for (const std::size_t k : ghost_effects_)
+      effects_[k]->add_ghosts(particles_, reach, settings_, time_s_);
   }
   ScopedTimer timer(phase_times_.neighbors);
   ++search_counts_.searches;
@@ -112,7 +115,7 @@ void Simulation::rebuild_neighborhood() {
   particles_.smoothing_length.resize(particles_.fluid_count());
   particles_.smoothing_length.swap(reached);
   particles_.smoothing_length.resize(particles_.size());
-  boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
+  set_ghost_fields();
 }
 
 bool Simulation::sorting_due() const {
@@ -149,8 +152,14 @@ void Simulation::update_fields(bool sort) {
 
 void Simulation::finish_fields() {
   neighbor_counts_.add(neighbor_list_);
-  // The force reads the ghosts' depth, area and radius.
+  set_ghost_fields();
+}
+
+void Simulation::set_ghost_fields() {
+  // The force reads the ghosts' depth, area and radius: their particles', then what the
+  // boundaries other than walls set for their own.
   boundaries::GhostWalls::copy_fields_to_ghosts(particles_);
+  for (const std::size_t k : ghost_effects_) effects_[k]->set_ghost_fields(particles_);
 }
 
 // Why only the outgrown rows: a wider kernel changes its own row, and another row only by
@@ -172,7 +181,7 @@ bool Simulation::repair_outgrown_rows() {
     for (const std::uint32_t i : grown) {
       const double radius = scheme_->search_radius(particles_.smoothing_length[i]);
       // Ghosts exist only within ghost_reach_ of a wall: a wider kernel might miss some.
-      if (!walls_.empty() && radius > ghost_reach_) return false;
+      if ((!walls_.empty() || !ghost_effects_.empty()) && radius > ghost_reach_) return false;
       search_radii_[i] = radius;
       listed_smoothing_length_[i] = particles_.smoothing_length[i];
       repaired_.push_back(i);
@@ -203,7 +212,7 @@ bool Simulation::repair_outgrown_rows() {
 bool Simulation::repair_after_resolution(std::size_t count_before,
                                          std::vector<std::uint32_t> changed) {
   const std::size_t n = particles_.fluid_count();
-  if (!walls_.empty() || scheme_->uniform_radius() || n < count_before ||
+  if (!walls_.empty() || !ghost_effects_.empty() || scheme_->uniform_radius() || n < count_before ||
       particles_.ghost_count() != 0)
     return false;
   for (const auto& effect : effects_) {

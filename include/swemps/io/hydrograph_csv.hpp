@@ -1,5 +1,6 @@
 #pragma once
-// Hydrographs in: a two-column CSV file of times and discharges.
+// Hydrographs and level series in: two-column CSV files of times and discharges, or of times
+// and water levels.
 //
 // What is accepted, exactly:
 //  - Comma-separated, one point per line. Blank lines and lines whose first non-blank
@@ -15,6 +16,9 @@
 //    hours read as seconds would silently stretch the flood.
 //  - Every following line holds exactly two finite numbers (decimal point, optional exponent).
 //    Times strictly increase; discharges are >= 0; at least one data line.
+//  - A level series is read by the same rules, its second column named `level`, `eta` or
+//    `elevation`, with the unit `m` if any (`time_s,level_m`, `t [s], eta [m]`); levels may
+//    be negative (a datum above the sea bed's lowest point is common).
 
 #include <array>
 #include <filesystem>
@@ -26,5 +30,7 @@ namespace swemps::io {
 // boundaries::Hydrograph. Throws std::runtime_error, one line "FILE:LINE: problem" (or
 // "FILE: problem" for a missing or empty file).
 std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::path& path);
+// The (time s, level m) points of a level series, in file order; errors as above.
+std::vector<std::array<double, 2>> read_level_csv(const std::filesystem::path& path);
 
 }  // namespace swemps::io

@@ -41,6 +41,12 @@ class SweParticles {
   // and velocity.
   void add_ghost(std::uint32_t from, double px, double py, double pu, double pv);
   void drop_ghosts();
+  // Ghosts [fluid_count(), mirror_end()) are mirror images of their particle across a wall;
+  // those added after close_mirror_images() (until the ghosts are dropped) stand for water
+  // beyond an open boundary and only borrow their particle's radius. The maps spread a
+  // particle's water over its mirror images alone.
+  void close_mirror_images() { mirrors_closed_ = true; }
+  std::size_t mirror_end() const { return mirror_end_; }
 
   // Reorders fluid particles so that new index k holds old index order[k] (no ghosts allowed).
   void reorder(std::span<const std::uint32_t> order);
@@ -52,6 +58,8 @@ class SweParticles {
  private:
   void resize(std::size_t n);
   std::size_t fluid_count_ = 0;
+  std::size_t mirror_end_ = 0;
+  bool mirrors_closed_ = false;
 };
 
 }  // namespace swemps::particles

@@ -145,6 +145,20 @@ struct Outflow {
   std::vector<Point> line;  // >= 2 points
 };
 
+// A straight line where the sea goes on beyond the domain (boundaries/sea_boundary.hpp):
+// waves leave through it, or its level follows a series and then lets waves leave.
+struct SeaBoundarySpec {
+  std::string name;
+  std::array<Point, 2> line;
+  // Open: the level of the sea at rest beyond the line; absent: the water's starting level
+  // beside the line (build). Unused by a level boundary, open about its series' last level
+  // once the series ends.
+  std::optional<double> still_level_m;
+  // A level boundary: (time s, level m) points, or a CSV file of them (absolute path).
+  std::optional<std::variant<std::vector<std::array<double, 2>>, std::filesystem::path>> level;
+  double spacing_m = 0.0;  // of the water it lets in
+};
+
 struct GridSpec {
   // Absent only with a raster bed: then the bed raster's own cells.
   std::optional<double> spacing_m;
@@ -232,6 +246,7 @@ struct Scenario {
   std::vector<Inflow> inflows;
   std::vector<Outflow> outflows;
   std::optional<FaultSourceSpec> fault_source;  // absent: none
+  std::vector<SeaBoundarySpec> sea_boundaries;
   Output output;
   Model model = Model::swe;
   // Model ns: 2 = a vertical x-z section along x (the scene's y is ignored), 3 = x, y, z.

@@ -73,6 +73,19 @@ class Effect {
   // repairs the neighbours and depths around those alone instead of searching and summing
   // every particle again.
   virtual bool lists_changes() const { return false; }
+  // Boundary ghosts: an effect that owns a stretch of boundary other than a wall (an open sea
+  // edge) says so here, and the simulation calls the two hooks below in every refresh, beside
+  // the walls' ghosts. Effects that say false are never called, so they cost nothing.
+  virtual bool adds_ghosts() const { return false; }
+  // Appends ghosts (SweParticles::add_ghost, each mirroring a fluid particle) for every fluid
+  // particle within `reach` (m) of the boundary, after the walls' ghosts and before the
+  // neighbour search; their volumes may differ from their particles' (the volume a ghost
+  // brings to its neighbours' depth sums). time_s is the start of the coming step.
+  virtual void add_ghosts(particles::SweParticles& /*p*/, double /*reach_m*/,
+                          const Settings& /*settings*/, double /*time_s*/) {}
+  // After the depth summation and the copy of every ghost's fields from its particle: sets
+  // the fields of the ghosts this effect added (depth, area ...).
+  virtual void set_ghost_fields(particles::SweParticles& /*p*/) {}
   // One line for the closing summary (what the effect did over the run); empty for none.
   virtual std::string report() const { return {}; }
   // What the effect carries from one step to the next (an inflow's progress, a time-step

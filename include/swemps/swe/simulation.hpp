@@ -159,6 +159,8 @@ class Simulation {
   const PhaseTimes& phase_times() const { return phase_times_; }
   const SearchCounts& search_counts() const { return search_counts_; }
   std::vector<EffectTime> effect_times() const;
+  // The scene's effects, in the order they act within their stage.
+  const std::vector<std::unique_ptr<Effect>>& effects() const { return effects_; }
   // The neighbour-row lengths of every summation since this simulation was made (a restored
   // one counts from its restart: a diagnostic, not state).
   const NeighborCounts& neighbor_counts() const { return neighbor_counts_; }
@@ -177,7 +179,8 @@ class Simulation {
 
  private:
   // refresh() without the resolution stage; `sort`: sort the particles by cell first.
-  // Wall ghosts for the current radii, then the neighbour list over fluid and ghosts.
+  // Wall ghosts and the boundary effects' ghosts for the current radii, then the neighbour
+  // list over fluid and ghosts.
   void add_ghosts_and_neighbors();
   // The largest search radius of the fluid particles (the scheme's, for their radii).
   double largest_search_radius() const;
@@ -197,6 +200,8 @@ class Simulation {
   bool repair_after_resolution(std::size_t count_before, std::vector<std::uint32_t> changed);
   // The end of every update of the fields: the neighbour counts, and the ghosts' fields.
   void finish_fields();
+  // Every ghost's fields copied from its particle, then those the boundary effects set.
+  void set_ghost_fields();
   // The checks of refresh(); each throws SimulationError (after a rollback) for a broken state.
   // update_fields() that turns the cell lists' refusal of a non-finite coordinate into one.
   void update_fields_checked(bool sort);
@@ -221,6 +226,7 @@ class Simulation {
   Settings settings_;
   boundaries::GhostWalls walls_;
   std::vector<std::unique_ptr<Effect>> effects_;
+  std::vector<std::size_t> ghost_effects_;  // the effects that add ghosts (Effect::adds_ghosts)
   std::vector<double> effect_seconds_;
   std::unique_ptr<Scheme> scheme_;
   std::vector<double> search_radii_;  // per particle, ghosts included (non-uniform schemes)
