@@ -77,10 +77,11 @@ class Effect {
   // edge) says so here, and the simulation calls the two hooks below in every refresh, beside
   // the walls' ghosts. Effects that say false are never called, so they cost nothing.
   virtual bool adds_ghosts() const { return false; }
-  // Appends ghosts (SweParticles::add_ghost, each mirroring a fluid particle) for every fluid
-  // particle within `reach` (m) of the boundary, after the walls' ghosts and before the
-  // neighbour search; their volumes may differ from their particles' (the volume a ghost
-  // brings to its neighbours' depth sums). time_s is the start of the coming step.
+  // Appends the ghosts that stand for the water beyond the boundary, as deep as `reach` (m),
+  // after the walls' ghosts and before the neighbour search (SweParticles::add_ghost: each
+  // names a fluid particle whose radius it takes; its position, velocity and volume, the
+  // water it brings to its neighbours' depth sums, are the effect's). time_s is the start of
+  // the coming step.
   virtual void add_ghosts(particles::SweParticles& /*p*/, double /*reach_m*/,
                           const Settings& /*settings*/, double /*time_s*/) {}
   // After the depth summation and the copy of every ghost's fields from its particle: sets
