@@ -175,7 +175,7 @@ void SeaBoundary::add_ghosts(particles::SweParticles& p, double reach,
   if (lattice_ratio_ == 0.0) lattice_ratio_ = lattice_area_ratio(settings);
   if (!filled_) fill_buffer();
   first_ghost_ = p.size();
-  ghost_buffer_.clear();
+  ghosts_.clear();
   // Each stretch's ghosts take the radius of the fluid particle nearest the line beside it (or
   // beside any stretch): particles of the size the water there has.
   constexpr auto kNone = std::numeric_limits<std::uint32_t>::max();
@@ -198,50 +198,49 @@ void SeaBoundary::add_ghosts(particles::SweParticles& p, double reach,
     }
   }
   if (any == kNone) return;  // no water beside the line: nothing for a buffer to act on
-  for (const BufferParticle& b : buffer_) {
+  for (std::size_t j = 0; j < buffer_.size(); ++j) {
+    const BufferParticle& b = buffer_[j];
     const auto [inside, along] = place(b.x, b.y);
     const std::size_t k = stretch_at(along);
     const State& s = stretches_[k].held;
     if (!(s.depth > kDriestBuffer * l)) continue;
     const std::uint32_t from = source[k] != kNone ? source[k] : any;
     const auto [u, v] = velocity(s);
-    add_ghost_of(p, from, b, s, b.x, b.y, u, v);
+    const BufferGhost ghost{static_cast<std::uint32_t>(j), static_cast<std::uint32_t>(k)};
+    add_ghost_of(p, from, ghost, b.x, b.y, u, v);
     // Where a wall meets the line, the buffer's mirror image across it (the wall normal to
     // the line there), its velocity along the line reversed.
     const double un = s.normal_speed, ut = s.tangential_speed;
     const double mirrored_u = un * outward_[0] - ut * along_[0];
     const double mirrored_v = un * outward_[1] - ut * along_[1];
     if (settings_.walled_ends[0] && along < reach) {
-      add_ghost_of(p, from, b, s, b.x - 2.0 * along * along_[0], b.y - 2.0 * along * along_[1],
+      add_ghost_of(p, from, ghost, b.x - 2.0 * along * along_[0], b.y - 2.0 * along * along_[1],
                    mirrored_u, mirrored_v);
     }
     const double to_end = length_m_ - along;
     if (settings_.walled_ends[1] && to_end < reach) {
-      add_ghost_of(p, from, b, s, b.x + 2.0 * to_end * along_[0], b.y + 2.0 * to_end * along_[1],
+      add_ghost_of(p, from, ghost, b.x + 2.0 * to_end * along_[0], b.y + 2.0 * to_end * along_[1],
                    mirrored_u, mirrored_v);
     }
   }
 }
 
-void SeaBoundary::add_ghost_of(particles::SweParticles& p, std::uint32_t source,
-                               const BufferParticle& b, const State& s, double x, double y,
-                               double u, double v) {
+void SeaBoundary::add_ghost_of(particles::SweParticles& p, std::uint32_t source, BufferGhost ghost,
+                               double x, double y, double u, double v) {
   p.add_ghost(source, x, y, u, v);
-  const std::size_t k = p.size() - 1;
   // Its water, for the depth sums of the fluid beside it.
-  p.volume[k] = s.depth * summed_area(b);
-  ghost_buffer_.push_back(static_cast<std::uint32_t>(&b - buffer_.data()));
+  p.volume[p.size() - 1] =
+      stretches_[ghost.stretch].held.depth * summed_area(buffer_[ghost.buffer]);
+  ghosts_.push_back(ghost);
 }
 
 void SeaBoundary::set_ghost_fields(particles::SweParticles& p) {
   // The ghosts' own depth and area: the buffer's (their radius and the rest are their source
   // particle's, copied).
-  for (std::size_t g = 0; g < ghost_buffer_.size(); ++g) {
+  for (std::size_t g = 0; g < ghosts_.size(); ++g) {
     const std::size_t k = first_ghost_ + g;
-    const BufferParticle& b = buffer_[ghost_buffer_[g]];
-    const auto [inside, along] = place(b.x, b.y);
-    p.depth[k] = stretches_[stretch_at(along)].held.depth;
-    p.area[k] = summed_area(b);
+    p.depth[k] = stretches_[ghosts_[g].stretch].held.depth;
+    p.area[k] = summed_area(buffer_[ghosts_[g].buffer]);
   }
   // What the stretches measure for the next step: the boundary states of the fluid particles
   // in the rows beside the line, weighted by a tent across the line (1 at the line, 0 at the

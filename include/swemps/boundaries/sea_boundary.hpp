@@ -136,8 +136,13 @@ class SeaBoundary final : public swe::Effect {
   void fill_buffer();
   // The area a buffer particle's depth sum would give: its volume is h_b times this.
   double summed_area(const BufferParticle& b) const;
-  void add_ghost_of(particles::SweParticles& p, std::uint32_t source, const BufferParticle& b,
-                    const State& s, double x, double y, double u, double v);
+  // A ghost of this refresh: the buffer particle it stands for and the stretch whose state
+  // it holds.
+  struct BufferGhost {
+    std::uint32_t buffer, stretch;
+  };
+  void add_ghost_of(particles::SweParticles& p, std::uint32_t source, BufferGhost ghost, double x,
+                    double y, double u, double v);
 
   SeaBoundarySettings settings_;
   std::array<double, 2> outward_{}, along_{};
@@ -148,9 +153,8 @@ class SeaBoundary final : public swe::Effect {
   std::vector<Stretch> stretches_;
   std::vector<BufferParticle> buffer_;
   bool filled_ = false;  // the first buffer made
-  // This refresh's ghosts, from first_ghost_ on in the particle set: the buffer particle each
-  // stands for.
-  std::vector<std::uint32_t> ghost_buffer_;
+  // This refresh's ghosts, from first_ghost_ on in the particle set.
+  std::vector<BufferGhost> ghosts_;
   std::size_t first_ghost_ = 0;
   std::vector<std::uint8_t> beyond_;
   double added_m3_ = 0.0, removed_m3_ = 0.0;
