@@ -442,7 +442,9 @@ double statistics_step_s(const scenario::Scenario& scene, const maps::CellAverag
   sim.refresh();
   maps::FloodStatistics statistics(
       grid.nx * grid.ny,
-      {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use});
+      {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use,
+       scene.output.tsunami ? std::optional<maps::TsunamiLevels>(scene.output.tsunami->levels)
+                            : std::nullopt});
   double gridding_s = std::numeric_limits<double>::infinity(), update_s = gridding_s;
   for (int k = 0; k < 2; ++k) {
     auto started = Clock::now();

@@ -1,4 +1,5 @@
-// `swe-mps export`: a finished result's GeoTIFF maps and gauge CSV, beside it.
+// `swe-mps export`: a finished result's GeoTIFF maps and gauge CSV, beside it, and a tsunami
+// run's inundation line and gauge arrivals.
 
 #include "swemps/cli/export_command.hpp"
 
@@ -6,8 +7,10 @@
 
 #include <stdexcept>
 
+#include "swemps/cli/output.hpp"
 #include "swemps/cli/run_command.hpp"
 #include "swemps/io/flood_products.hpp"
+#include "swemps/io/tsunami_products.hpp"
 
 namespace swemps::cli {
 
@@ -35,6 +38,14 @@ void export_products(const Options& options) {
   } catch (const std::runtime_error& e) {
     throw OutputError(e.what());
   }
+  // A tsunami run's line (as a GeoPackage) and gauge arrivals, as the run's end makes them.
+  bool tsunami = false;
+  try {
+    tsunami = io::has_tsunami_maps(result);
+  } catch (const std::runtime_error& e) {
+    throw OutputError(e.what());
+  }
+  if (tsunami) write_tsunami_products(result, prefix, io::VectorFile::gpkg);
 }
 
 }  // namespace swemps::cli

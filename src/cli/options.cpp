@@ -42,7 +42,9 @@ Commands:
             written
   export    from a run's netCDF result: GeoTIFF maps of its whole-run statistics and
             hazard classes (PREFIX_<map>.tif, PREFIX the result without .nc) and the gauge
-            series as CSV (PREFIX_gauges.csv)
+            series as CSV (PREFIX_gauges.csv); from a run with tsunami maps also the
+            inundation line (PREFIX_inundation_line.gpkg) and the gauge arrivals
+            (PREFIX_gauge_arrivals.csv)
 
 Options:
   -o, --output PATH   run: write the netCDF result to PATH instead of the scene's

@@ -64,6 +64,32 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& output) {
   return path;
 }
 
+void write_tsunami_products(const std::filesystem::path& result,
+                            const std::filesystem::path& prefix,
+                            std::optional<io::VectorFile> line) {
+  writing([&] {
+    if (line) {
+      std::filesystem::path file = prefix;
+      file += *line == io::VectorFile::gpkg ? "_inundation_line.gpkg" : "_inundation_line.geojson";
+      if (const auto reached = io::export_inundation_line(result, file, *line)) {
+        spdlog::info(
+            "wrote {}: {} line{}, the highest ground reached {:.4g} m{} at ({:.2f}, {:.2f})",
+            file.string(), reached->lines, reached->lines == 1 ? "" : "s",
+            reached->max_ground_elevation_m,
+            reached->max_runup_m
+                ? fmt::format(" ({:.4g} m above the still level)", *reached->max_runup_m)
+                : std::string(),
+            reached->x_m, reached->y_m);
+      } else {
+        spdlog::info("no inundation line: the water never stopped short of dry ground");
+      }
+    }
+    std::filesystem::path csv = prefix;
+    csv += "_gauge_arrivals.csv";
+    if (io::export_gauge_arrivals(result, csv)) spdlog::info("wrote {}", csv.string());
+  });
+}
+
 MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& terrain,
                      const swe::RegularGrid& grid, const RunContext& context, bool particles,
                      const std::string& depth_long_name, const std::string& title_note,
@@ -71,12 +97,13 @@ MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& t
     : wet_depth_m_(scene.output.wet_depth_m),
       rasters_(scene.output.rasters),
       raster_cog_(scene.output.raster_cog),
+      tsunami_(scene.output.tsunami),
       bed_(terrain.bed),
       bed_m_(grid_bed(terrain, grid)),
-      statistics_(
-          grid.nx * grid.ny,
-          {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use},
-          bed_m_) {
+      statistics_(grid.nx * grid.ny,
+                  {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use,
+                   tsunami_ ? std::optional<maps::TsunamiLevels>(tsunami_->levels) : std::nullopt},
+                  bed_m_) {
   const std::string started = utc_now();
   io::RunMetadata meta;
   meta.title = scene.name;
@@ -168,6 +195,14 @@ void MapOutput::finish() {
     csv += "_gauges.csv";
     if (io::export_gauges(writer_->path(), csv)) spdlog::info("wrote {}", csv.string());
   });
+  if (tsunami_) {
+    std::optional<io::VectorFile> line;
+    if (tsunami_->inundation_line == scenario::VectorFormat::gpkg) line = io::VectorFile::gpkg;
+    if (tsunami_->inundation_line == scenario::VectorFormat::geojson) {
+      line = io::VectorFile::geojson;
+    }
+    write_tsunami_products(writer_->path(), prefix, line);
+  }
 }
 
 void MapOutput::close_stopped(const std::string& status, const std::string& message) {

@@ -5,18 +5,16 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <stdexcept>
-#include <system_error>
 
 #include "netcdf_layout.hpp"
 #include "result_reader.hpp"
 #include "swemps/maps/hazard.hpp"
+#include "text_file.hpp"
 
 namespace swemps::io {
 
@@ -144,42 +142,29 @@ bool export_gauges(const std::filesystem::path& result, const std::filesystem::p
     }
   }
 
+  std::string text = "time_s";
+  for (const auto& g : gauges) {
+    for (const char* unit : units) {
+      // Appended piecewise: `"," + string` trips a false -Wrestrict warning in GCC 12.
+      text += ',';
+      text += column_name(g);
+      text += '_';
+      text += unit;
+    }
+  }
+  text += '\n';
+  for (std::size_t t = 0; t < time.size(); ++t) {
+    char stamp[32];
+    std::snprintf(stamp, sizeof stamp, "%.12g", time[t]);
+    text += stamp;
+    for (std::size_t g = 0; g < n; ++g) {
+      for (const auto& column : columns) text::append_cell(text, column[t * n + g]);
+    }
+    text += '\n';
+  }
   std::filesystem::path partial = csv;
   partial += ".partial";
-  errno = 0;
-  std::FILE* out = std::fopen(partial.c_str(), "w");
-  if (out == nullptr) {
-    throw std::runtime_error("cannot create " + quoted(partial) + ": " +
-                             (errno != 0 ? std::strerror(errno) : "unknown reason"));
-  }
-  bool good = std::fputs("time_s", out) >= 0;
-  for (const auto& g : gauges) {
-    for (const char* unit : units)
-      good = good && std::fprintf(out, ",%s_%s", column_name(g).c_str(), unit) > 0;
-  }
-  good = good && std::fputc('\n', out) != EOF;
-  for (std::size_t t = 0; t < time.size() && good; ++t) {
-    good = std::fprintf(out, "%.12g", time[t]) > 0;
-    for (std::size_t g = 0; g < n; ++g) {
-      for (const auto& column : columns) {
-        const double v = column[t * n + g];
-        good = good &&
-               (std::isnan(v) ? std::fputc(',', out) != EOF : std::fprintf(out, ",%.12g", v) > 0);
-      }
-    }
-    good = good && std::fputc('\n', out) != EOF;
-  }
-  good = std::fclose(out) == 0 && good;
-  std::error_code ec;
-  if (!good) {
-    std::filesystem::remove(partial, ec);
-    throw std::runtime_error("cannot write " + quoted(partial));
-  }
-  std::filesystem::rename(partial, csv, ec);
-  if (ec) {
-    std::filesystem::remove(partial, ec);
-    throw std::runtime_error("cannot rename " + quoted(partial) + " to " + quoted(csv));
-  }
+  text::write_then_rename(csv, partial, text);
   return true;
 }
 

@@ -115,7 +115,7 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
   const std::string velocity_rule =
       wet_rule + "; over wet samples with velocity only (0 where never wet)";
   const std::string land_use(maps::name(stats.land_use()));
-  const SummaryMap summary[] = {
+  std::vector<SummaryMap> summary{
       {"max_depth", stats.max_depth(), "m", "flood_water_thickness",
        "maximum water depth over the run", "time: maximum", "over all samples with data"},
       {"time_of_max_depth", stats.time_of_max_depth(), "s", nullptr,
@@ -137,6 +137,22 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
        "time: maximum",
        velocity_rule + "; each sample rated by its own depth and speed; debris factor for " +
            land_use + " land use"}};
+  // The tsunami maps, only where the scene asked for them.
+  const std::vector<double> surface_rise = stats.max_surface_rise();
+  if (const auto& levels = stats.tsunami()) {
+    const std::string still = exact_text(levels->still_level_m) + " m";
+    summary.push_back({"max_surface_rise", surface_rise, "m", nullptr,
+                       "maximum water-surface elevation above the sea's still level",
+                       "time: maximum",
+                       wet_rule + "; max_surface_elevation less the still level " + still +
+                           "; fill value where never wet"});
+    summary.push_back({"tsunami_arrival_time", stats.rise_arrival_time(), "s", nullptr,
+                       "simulated time at which the water surface first rose the arrival rise "
+                       "above the sea's still level",
+                       nullptr,
+                       wet_rule + "; first wet sample with bed plus depth above " + still + " + " +
+                           exact_text(levels->arrival_rise_m) + " m; fill value where never"});
+  }
   const std::vector<double>& thresholds = stats.thresholds();
   const std::string threshold_rule =
       "one map per depth_threshold; above: depth > the threshold; threshold 0 is the wet depth";
@@ -163,6 +179,11 @@ void NetcdfWriter::write_summary(const maps::FloodStatistics& stats) {
       return def.static_map_var(ids_, s.name, s.units, s.standard_name, s.long_name);
     }));
     describe(ids.back(), s.cell_methods, s.comment);
+    if (const auto& levels = stats.tsunami(); levels && maps::is_tsunami_map(s.name)) {
+      // What the tsunami products made from the file (io/tsunami_products.hpp) measure from.
+      def.number(ids.back(), "still_level_m", levels->still_level_m);
+      def.number(ids.back(), "arrival_rise_m", levels->arrival_rise_m);
+    }
   }
   const int threshold_dim = def.dimension("depth_threshold", thresholds.size());
   const int threshold_var = find_or("depth_threshold", [&] {

@@ -45,11 +45,19 @@ FloodStatistics::FloodStatistics(std::size_t cells, StatisticsSettings settings,
                                  std::vector<double> bed_m)
     : thresholds_m_(sorted_thresholds(settings)),
       land_use_(settings.land_use),
+      tsunami_(settings.tsunami),
       bed_m_(std::move(bed_m)),
       last_time_s_(kNaN) {
   if (!bed_m_.empty() && bed_m_.size() != cells) {
     throw std::invalid_argument("FloodStatistics: a bed of " + std::to_string(bed_m_.size()) +
                                 " cells for " + std::to_string(cells) + " cells");
+  }
+  if (tsunami_ && (!std::isfinite(tsunami_->still_level_m) ||
+                   !std::isfinite(tsunami_->arrival_rise_m) || !(tsunami_->arrival_rise_m > 0.0))) {
+    throw std::invalid_argument("FloodStatistics: the still level (" +
+                                std::to_string(tsunami_->still_level_m) +
+                                " m) must be finite and the arrival rise (" +
+                                std::to_string(tsunami_->arrival_rise_m) + " m) above 0");
   }
   arrival_.resize(thresholds_m_.size());
   duration_.resize(thresholds_m_.size());
@@ -64,6 +72,7 @@ std::vector<std::vector<double>*> FloodStatistics::all_maps() {
     out.push_back(&arrival_[j]);
     out.push_back(&duration_[j]);
   }
+  if (tsunami_) out.push_back(&rise_arrival_);
   return out;
 }
 
@@ -71,6 +80,13 @@ std::vector<std::span<const double>> FloodStatistics::maps() const {
   std::vector<std::span<const double>> out;
   for (const auto* map : const_cast<FloodStatistics*>(this)->all_maps()) out.emplace_back(*map);
   return out;
+}
+
+std::vector<double> FloodStatistics::max_surface_rise() const {
+  if (!tsunami_) return {};
+  std::vector<double> rise(max_surface_.size());
+  for (std::size_t i = 0; i < rise.size(); ++i) rise[i] = max_surface_[i] - tsunami_->still_level_m;
+  return rise;
 }
 
 void FloodStatistics::restore(std::size_t samples, double last_time_s,
@@ -129,6 +145,10 @@ void FloodStatistics::update(double time_s, std::span<const double> depth,
     if (deeper) time_of_max_depth_[i] = time_s;
     const double surface_m = h + (bed_m_.empty() ? 0.0 : bed_m_[i]);
     if (!(max_surface_[i] >= surface_m)) max_surface_[i] = surface_m;  // NaN at first
+    if (tsunami_ && std::isnan(rise_arrival_[i]) &&
+        surface_m > tsunami_->still_level_m + tsunami_->arrival_rise_m) {
+      rise_arrival_[i] = time_s;
+    }
     for (std::size_t j = 0; j < thresholds && h > thresholds_m_[j]; ++j) {
       if (std::isnan(arrival_[j][i])) arrival_[j][i] = time_s;
       duration_[j][i] += interval_s;

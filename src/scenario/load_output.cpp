@@ -265,11 +265,51 @@ std::string cf_time_units(std::string_view text) {
   return buffer + zone;
 }
 
-// "all", or a list of the maps to write as GeoTIFF.
-std::vector<std::string> read_rasters(const Object& o) {
+// The level every body of the scene's starting water is filled to, when they share one: a
+// level body's surface, or a uniform depth over no bed (the plane z = 0). None when a body's
+// surface is not level or two bodies differ.
+std::optional<double> common_still_level(const Scenario& scene) {
+  std::optional<double> level;
+  for (const WaterBody& body : scene.water) {
+    std::optional<double> surface;
+    if (const auto* filled = std::get_if<LevelSurface>(&body.depth)) {
+      surface = filled->surface_elevation_m;
+    } else if (const auto* uniform = std::get_if<UniformDepth>(&body.depth);
+               uniform && std::holds_alternative<std::monostate>(scene.bed)) {
+      surface = uniform->depth_m;
+    }
+    if (!surface || (level && *level != *surface)) return std::nullopt;
+    level = surface;
+  }
+  return level;
+}
+
+std::optional<TsunamiOutput> read_tsunami(const json* v, const std::string& path,
+                                          const Scenario& scene, double wet_depth_m) {
+  if (v == nullptr) return std::nullopt;
+  const Object o(*v, path, {"still_level", "arrival_rise", "inundation_line"}, "an object");
+  TsunamiOutput out;
+  const std::string level_expected =
+      "the elevation of the sea at rest (metres), which the scene's water does not give: its "
+      "bodies are not all filled to one level";
+  const std::optional<double> filled = common_still_level(scene);
+  out.levels.still_level_m = number(o, "still_level", level_expected, filled);
+  // The wet depth is the scene's own measure of water that counts; a film's rise is none.
+  out.levels.arrival_rise_m =
+      positive(o, "arrival_rise", kMetres, wet_depth_m > 0.0 ? wet_depth_m : 0.01);
+  const std::string_view format = choice(o, "inundation_line", {"gpkg", "geojson", "none"}, "gpkg");
+  out.inundation_line = format == "gpkg"      ? VectorFormat::gpkg
+                        : format == "geojson" ? VectorFormat::geojson
+                                              : VectorFormat::none;
+  return out;
+}
+
+// "all", or a list of the maps to write as GeoTIFF; the tsunami maps only with `tsunami`.
+std::vector<std::string> read_rasters(const Object& o, bool tsunami) {
   const json* v = o.find("rasters");
   if (v == nullptr) return {};
-  const auto& known = maps::summary_map_names();
+  std::vector<std::string> known = maps::summary_map_names();
+  if (!tsunami) std::erase_if(known, maps::is_tsunami_map);
   const Names choices(known.begin(), known.end());
   const std::string path = o.path("rasters");
   if (v->is_string() && v->get_ref<const std::string&>() == "all") return known;
@@ -291,7 +331,7 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
   const Object o(
       v ? *v : empty_object(), path,
       {"path", "times", "interval", "grid", "particles", "gauges", "series_interval", "wet_depth",
-       "depth_thresholds", "land_use", "start_time", "rasters", "raster_format"},
+       "depth_thresholds", "land_use", "start_time", "rasters", "raster_format", "tsunami"},
       "an object");
   Output out;
   out.path = read_output_path(o, scene.name, base_dir);
@@ -322,7 +362,8 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
     out.start_time = *start;
     out.start_time_units = units;
   }
-  out.rasters = read_rasters(o);
+  out.tsunami = read_tsunami(o.find("tsunami"), o.path("tsunami"), scene, out.wet_depth_m);
+  out.rasters = read_rasters(o, out.tsunami.has_value());
   out.raster_cog = choice(o, "raster_format", {"cog", "geotiff"}, "cog") == "cog";
   return out;
 }

@@ -45,7 +45,8 @@ constexpr const char* kDamScene = R"({
   "inflow": [{"line": [[0.02, 0.05], [0.02, 0.95]], "hydrograph": [[0, 0.05]],
               "direction": [1, 0], "depth": 0.25}],
   "outflow": [{"line": [[9, 0], [9, 1]]}],
-  "output": {"path": "dam.nc", "interval": 0.25, "grid": {"spacing": 0.1}}
+  "output": {"path": "dam.nc", "interval": 0.25, "grid": {"spacing": 0.1},
+             "tsunami": {"still_level": 0, "arrival_rise": 0.01}}
 })";
 
 // Ritter's dam break with a time-step floor that the seed scheme's shrinking step crosses in
@@ -153,9 +154,9 @@ void require_same_end(const fs::path& a, const fs::path& b) {
   // The maps were written (depth is time x y x, read whole).
   CHECK(!fa.whole("depth").empty());
   // The flood statistics went on from the checkpoint's as if never stopped.
-  for (const char* map :
-       {"max_depth", "time_of_max_depth", "max_speed", "max_hazard_rating", "arrival_time",
-        "inundation_duration", "hazard_class_uk", "hazard_class_aidr"}) {
+  for (const char* map : {"max_depth", "time_of_max_depth", "max_speed", "max_hazard_rating",
+                          "arrival_time", "inundation_duration", "hazard_class_uk",
+                          "hazard_class_aidr", "max_surface_rise", "tsunami_arrival_time"}) {
     INFO(map);
     CHECK(fa.whole(map) == fb.whole(map));
   }
@@ -306,6 +307,8 @@ TEST_CASE("a run killed after a checkpoint goes on from it to the same file", "[
   CHECK(a.times() == b.times());
   CHECK(a.all("particle_x", "particle_sample") == b.all("particle_x", "particle_sample"));
   CHECK(a.whole("max_depth") == b.whole("max_depth"));
+  // The tsunami products are made at the end of the restarted run, as of a straight one.
+  CHECK(fs::exists(dir.path() / "killed_inundation_line.gpkg"));
 }
 
 TEST_CASE("a checkpoint that does not fit is refused with status 2", "[cli][checkpoint]") {

@@ -267,3 +267,48 @@ TEST_CASE("FloodStatistics rates each sample by its own depth and speed", "[maps
   CHECK(stats.max_hazard_class()[0] == 3.0);
   CHECK(swemps::maps::uk_hazard_rating(1.0, 1.4, LandUse::pasture_arable) == Approx(2.4));
 }
+
+TEST_CASE("FloodStatistics maps a tsunami's rise and arrival above the still level",
+          "[maps][statistics][tsunami]") {
+  using swemps::maps::TsunamiLevels;
+  // Still level 0, arrival rise 0.05. Cell 0: sea floor at -2 m, the wave comes at t = 20.
+  // Cell 1: beach at +0.5 m, wetted at t = 30 by 0.2 m. Cell 2: beach at 0.02 m, reached by
+  // 0.02 m of water (wet, but only 0.04 above the still level: not arrived). Cell 3: dry.
+  swemps::maps::StatisticsSettings settings{0.01, {}};
+  settings.tsunami = TsunamiLevels{0.0, 0.05};
+  FloodStatistics stats(4, settings, {-2.0, 0.5, 0.02, 3.0});
+  const std::vector<double> zero(4, 0.0);
+  stats.update(0.0, std::vector{2.0, 0.0, 0.0, 0.0}, zero, zero);
+  stats.update(10.0, std::vector{2.04, 0.0, 0.0, 0.0}, zero, zero);  // 0.04: not yet
+  stats.update(20.0, std::vector{2.3, 0.0, 0.02, 0.0}, zero, zero);
+  stats.update(30.0, std::vector{1.9, 0.2, 0.005, 0.0}, zero, zero);
+  const auto rise = stats.max_surface_rise();
+  REQUIRE(rise.size() == 4);
+  CHECK(rise[0] == Approx(0.3));
+  CHECK(rise[1] == Approx(0.7));
+  CHECK(rise[2] == Approx(0.04));
+  CHECK(std::isnan(rise[3]));  // never wet
+  const auto arrival = copy(stats.rise_arrival_time());
+  CHECK(arrival[0] == 20.0);
+  CHECK(arrival[1] == 30.0);
+  CHECK(std::isnan(arrival[2]));
+  CHECK(std::isnan(arrival[3]));
+
+  // The arrival map is part of the state a checkpoint keeps; the rise is made from the
+  // surface, so it needs no map of its own.
+  const FloodStatistics plain(4, {0.01, {}});
+  CHECK(stats.maps().size() == plain.maps().size() + 1);
+  CHECK(plain.max_surface_rise().empty());
+  CHECK(plain.rise_arrival_time().empty());
+  std::vector<std::vector<double>> saved;
+  for (const auto m : stats.maps()) saved.push_back(copy(m));
+  FloodStatistics restored(4, settings, {-2.0, 0.5, 0.02, 3.0});
+  restored.restore(stats.samples(), stats.last_time(), saved);
+  CHECK(copy(restored.rise_arrival_time())[1] == 30.0);
+  CHECK_THROWS_AS(FloodStatistics(4, {0.01, {}}).restore(4, 30.0, saved), std::invalid_argument);
+
+  settings.tsunami = TsunamiLevels{0.0, 0.0};
+  CHECK_THROWS_AS(FloodStatistics(4, settings), std::invalid_argument);
+  settings.tsunami = TsunamiLevels{kNaN, 0.05};
+  CHECK_THROWS_AS(FloodStatistics(4, settings), std::invalid_argument);
+}

@@ -899,6 +899,23 @@ std::vector<Broken> broken_terrain_scenes() {
          s["output"] = {{"rasters", "some"}};
        }),
        "/output/rasters", "expected \"all\" or an array of map names"},
+      {"a tsunami map without the tsunami products", edited([](json& s) {
+         s["output"] = {{"rasters", {"max_depth", "tsunami_arrival_time"}}};
+       }),
+       "/output/rasters/1", "found a string \"tsunami_arrival_time\", expected one of"},
+      {"tsunami products over water not filled to one level", edited([](json& s) {
+         s["bed"] = {{"plane", {{"elevation", -1.0}, {"slope", {0.1, 0.0}}}}};
+         s["output"] = {{"tsunami", json::object()}};
+       }),
+       "/output/tsunami/still_level", "expected the elevation of the sea at rest"},
+      {"tsunami arrival rise of zero", edited([](json& s) {
+         s["output"] = {{"tsunami", {{"arrival_rise", 0}}}};
+       }),
+       "/output/tsunami/arrival_rise", "found 0, expected a number > 0 (metres)"},
+      {"unknown inundation line format", edited([](json& s) {
+         s["output"] = {{"tsunami", {{"inundation_line", "shp"}}}};
+       }),
+       "/output/tsunami/inundation_line", "expected one of \"gpkg\", \"geojson\", \"none\""},
       {"unknown raster format", edited([](json& s) {
          s["output"] = {{"raster_format", "tiff"}};
        }),
@@ -1018,7 +1035,41 @@ TEST_CASE("flood products arrive as given", "[scenario]") {
     }));
     CHECK(s.output.depth_thresholds_m == std::vector<double>{0.5, 1.0});
     CHECK(s.output.start_time_units == "seconds since 2000-02-29 00:00:00");
+    // Every map but the tsunami maps, which only a scene with output.tsunami has.
+    auto expected = swemps::maps::summary_map_names();
+    std::erase_if(expected, swemps::maps::is_tsunami_map);
+    CHECK(expected.size() + 2 == swemps::maps::summary_map_names().size());
+    CHECK(s.output.rasters == expected);
+    CHECK_FALSE(s.output.tsunami.has_value());
+  }
+  SECTION("tsunami products: the still level the water is filled to, the wet depth's rise") {
+    const auto s = parse_text(edited([](json& j) {
+      j["bed"] = {{"plane", {{"elevation", -1.0}, {"slope", {0.1, 0.0}}}}};
+      j["water"][0] = {{"fill", {{"rectangle", j["water"][0]["rectangle"]}}},
+                       {"surface_elevation", -0.3},
+                       {"spacing", 0.1}};
+      j["output"] = {{"wet_depth", 0.002}, {"tsunami", json::object()}, {"rasters", "all"}};
+    }));
+    REQUIRE(s.output.tsunami.has_value());
+    CHECK(s.output.tsunami->levels.still_level_m == -0.3);
+    CHECK(s.output.tsunami->levels.arrival_rise_m == 0.002);
+    CHECK(s.output.tsunami->inundation_line == swemps::scenario::VectorFormat::gpkg);
     CHECK(s.output.rasters == swemps::maps::summary_map_names());
+  }
+  SECTION("tsunami products as given; a uniform depth over no bed is its own level") {
+    const auto s = parse_text(edited([](json& j) {
+      j["output"] = {
+          {"tsunami",
+           {{"still_level", 0.2}, {"arrival_rise", 0.03}, {"inundation_line", "geojson"}}},
+          {"rasters", {"max_surface_rise"}}};
+    }));
+    CHECK(s.output.tsunami->levels.still_level_m == 0.2);
+    CHECK(s.output.tsunami->levels.arrival_rise_m == 0.03);
+    CHECK(s.output.tsunami->inundation_line == swemps::scenario::VectorFormat::geojson);
+    CHECK(s.output.rasters == std::vector<std::string>{"max_surface_rise"});
+    const auto d = parse_text(edited([](json& j) { j["output"] = {{"tsunami", json::object()}}; }));
+    CHECK(d.output.tsunami->levels.still_level_m == 0.25);
+    CHECK(d.output.tsunami->levels.arrival_rise_m == 0.01);
   }
   SECTION("UTC") {
     const auto s = parse_text(edited([](json& j) {

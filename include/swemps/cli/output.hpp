@@ -15,6 +15,7 @@
 
 #include "swemps/cli/run_command.hpp"
 #include "swemps/io/netcdf_writer.hpp"
+#include "swemps/io/tsunami_products.hpp"
 #include "swemps/maps/flood_statistics.hpp"
 #include "swemps/particles/swe_particles.hpp"
 #include "swemps/scenario/build.hpp"
@@ -63,6 +64,14 @@ struct GriddedState {
   std::span<const double> depth;  // m
   std::span<const double> u, v;   // m/s, depth-averaged; NaN where unknown
 };
+
+// The tsunami products of a finished result beside it (io/tsunami_products.hpp): the
+// inundation line as <prefix>_inundation_line.gpkg or .geojson (none with `line` empty) and,
+// where the result has tsunami maps and gauges, <prefix>_gauge_arrivals.csv; each file
+// written and the run-up reached are logged. OutputError on failure.
+void write_tsunami_products(const std::filesystem::path& result,
+                            const std::filesystem::path& prefix,
+                            std::optional<io::VectorFile> line);
 
 // The netCDF file of a run, with the flood statistics gathered from its samples.
 class MapOutput {
@@ -116,6 +125,7 @@ class MapOutput {
   double wet_depth_m_;
   std::vector<std::string> rasters_;  // written as GeoTIFF by finish()
   bool raster_cog_;
+  std::optional<scenario::TsunamiOutput> tsunami_;  // products made by finish()
   std::shared_ptr<const swe::BedSource> bed_;  // null: flat at z = 0
   std::vector<double> bed_m_;                  // at cell centres; 0 without a bed
   maps::FloodStatistics statistics_;

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "swemps/maps/flood_statistics.hpp"
 #include "swemps/maps/hazard.hpp"
 #include "swemps/ns/settings.hpp"
 #include "swemps/splitting/particle_merging.hpp"
@@ -172,6 +173,14 @@ struct Gauge {
   Point position_m;
 };
 
+// The tsunami products of a run (docs/outputs.md, "Tsunami maps"): the maps of the rise above
+// the sea's still level and of the wave's arrival, and the inundation line as a vector file.
+enum class VectorFormat { none, gpkg, geojson };
+struct TsunamiOutput {
+  maps::TsunamiLevels levels;  // the still level given, or the level the scene's sea is filled to
+  VectorFormat inundation_line = VectorFormat::gpkg;
+};
+
 struct Output {
   std::filesystem::path path;   // absolute once loaded
   std::vector<double> times_s;  // sorted, unique, in (0, end_time]; t = 0 is always written too
@@ -193,6 +202,7 @@ struct Output {
   // false.
   std::vector<std::string> rasters;
   bool raster_cog = true;
+  std::optional<TsunamiOutput> tsunami;  // absent: none of the tsunami products
 };
 
 // An earthquake's rectangular fault planes (tsunami/okada.hpp): the floor's vertical
