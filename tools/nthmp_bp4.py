@@ -4,8 +4,10 @@
 Two measures, each against the Caltech tank's data in data/nthmp-bp4/:
 
   profiles   the surface along the channel at t/T = 30, 40, ..., 70 of a run of
-             cases/nthmp-bp4 (H/d = 0.0185), against the tank's profiles: RMS difference over
-             H at each time, where both are wet, and a plot.
+             cases/nthmp-bp4 (H/d = 0.0185), or at t/T = 15, 20, 25, 30 of a run of its
+             breaking.json (H/d = 0.3), against the tank's profiles: RMS difference over H at
+             each time, where both are wet, and a plot; and the run-up against the tank's
+             runs within 10 % of the wave's H/d.
   sweep      the maximum run-up over a range of H/d (the non-breaking waves, H/d < 0.045): for
              each height the shipped scene is written with that wave (its crest at X0 + L,
              as the problem places it), run by swe-mps, and its run-up measured as
@@ -14,6 +16,7 @@ Two measures, each against the Caltech tank's data in data/nthmp-bp4/:
              R/d = 2.831 sqrt(cot beta) (H/d)^(5/4).
 
     /usr/bin/python3 tools/nthmp_bp4.py profiles cases/nthmp-bp4/nthmp-bp4.nc [--plot P.png]
+    /usr/bin/python3 tools/nthmp_bp4.py profiles cases/nthmp-bp4/nthmp-bp4-breaking.nc
     /usr/bin/python3 tools/nthmp_bp4.py sweep WORK_FOLDER [--heights 0.005 0.01 ...]
         [--spacing 0.05] [--threads 2] [--plot P.png]
 
@@ -62,10 +65,13 @@ def profiles(args):
     y = d["y"][:]
     row = int(np.argmin(np.abs(y - 0.5 * (y[0] + y[-1]))))
     times = d["time"][:] / tau
-    height = 0.0185
+    height = json.loads(d.getncattr("scenario"))["water"][0]["solitary_wave"]["height"]
+    # The tank's profiles: the non-breaking wave at t/T = 30 ... 70, the breaking one at 15 ... 30.
+    breaking = height > BREAKING
+    label = "0.3" if breaking else "0.0185"
     panels = []
-    for t in (30, 40, 50, 60, 70):
-        lab = np.loadtxt(DATA / f"profile_H0.0185_t{t}.txt")
+    for t in (15, 20, 25, 30) if breaking else (30, 40, 50, 60, 70):
+        lab = np.loadtxt(DATA / f"profile_H{label}_t{t}.txt")
         m = int(np.argmin(np.abs(times - t)))
         if abs(times[m] - t) > 0.05:
             print(f"no output at t/T = {t}", file=sys.stderr)
@@ -76,7 +82,16 @@ def profiles(args):
         rms = math.sqrt(np.mean((model[both] - lab[both, 1]) ** 2)) / height
         print(f"profile t/T = {t}: RMS {100 * rms:.1f} % of H over {both.sum()} lab points")
         panels.append((t, lab, surface))
-    print(f"maximum run-up R/d = {runup(args.result):.4f} (law {runup_law(height):.4f})")
+    r = runup(args.result)
+    # The run-up law is the non-breaking waves' (Synolakis 1987).
+    law = "" if breaking else f" (law {runup_law(height):.4f})"
+    print(f"maximum run-up R/d = {r:.4f}{law}")
+    tank = lab_runups()
+    near = tank[np.abs(tank[:, 0] - height) <= 0.1 * height]
+    if len(near):
+        mean = near[:, 1].mean()
+        print(f"tank: {len(near)} runs at H/d {near[:, 0].min():g}-{near[:, 0].max():g}, mean R/d "
+              f"{mean:.4f}: {100 * (r / mean - 1):+.1f} %")
     if args.plot:
         import matplotlib
         matplotlib.use("Agg")
@@ -85,13 +100,13 @@ def profiles(args):
         for ax, (t, lab, surface) in zip(axes, panels):
             ax.plot(x, surface, lw=1.2, label="swe-mps")
             ax.plot(lab[:, 0], lab[:, 1], "o", ms=3, color="k", label="tank")
-            ax.set_xlim(-3, 20)
-            ax.set_ylim(-0.03, 0.1)
+            ax.set_xlim(-12 if breaking else -3, 20)
+            ax.set_ylim(-0.1, 0.7) if breaking else ax.set_ylim(-0.03, 0.1)
             ax.set_ylabel("surface / d")
             ax.text(0.98, 0.85, f"t/T = {t}", transform=ax.transAxes, ha="right")
         axes[0].legend(fontsize=7, loc="upper center")
         axes[-1].set_xlabel("x / d")
-        fig.suptitle("NTHMP BP4, H/d = 0.0185: surface profiles against the tank")
+        fig.suptitle(f"NTHMP BP4, H/d = {height:g}: surface profiles against the tank")
         fig.tight_layout()
         fig.savefig(args.plot, dpi=110)
     return 0
