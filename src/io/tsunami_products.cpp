@@ -5,6 +5,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -15,6 +16,7 @@
 
 #include "result_reader.hpp"
 #include "swemps/io/gdal_messages.hpp"
+#include "swemps/terrain/gridded_field.hpp"
 #include "text_file.hpp"
 
 namespace swemps::io {
@@ -27,38 +29,25 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Cells without data in the raster the contours are traced on: far below any depth.
 constexpr double kNoData = -1e30;
 
-// A map of the result's grid, south-up as the file stores it (cell (i, k) at k * nx + i).
-struct GridMap {
-  Grid grid;
-  std::vector<double> values;
-
-  // Bilinear between the cell centres around (x, y), over those with data; the nearest
-  // centre's value beyond the outer centres.
-  double at(double x, double y) const {
-    const double fx = std::clamp((x - grid.x0) / grid.dx, 0.0, static_cast<double>(grid.nx - 1));
-    const double fy = std::clamp((y - grid.y0) / grid.dy, 0.0, static_cast<double>(grid.ny - 1));
-    const auto i0 = std::min(static_cast<std::size_t>(fx), grid.nx > 1 ? grid.nx - 2 : 0);
-    const auto k0 = std::min(static_cast<std::size_t>(fy), grid.ny > 1 ? grid.ny - 2 : 0);
-    const double ax = fx - static_cast<double>(i0), ay = fy - static_cast<double>(k0);
-    double sum = 0.0, weights = 0.0;
-    for (std::size_t dk = 0; dk < 2 && k0 + dk < grid.ny; ++dk) {
-      for (std::size_t di = 0; di < 2 && i0 + di < grid.nx; ++di) {
-        const double v = values[(k0 + dk) * grid.nx + i0 + di];
-        const double w = (di ? ax : 1.0 - ax) * (dk ? ay : 1.0 - ay);
-        if (std::isnan(v) || w <= 0.0) continue;
-        sum += w * v;
-        weights += w;
-      }
-    }
-    return weights > 0.0 ? sum / weights : kNaN;
+// A map of the result (south-up, cell (i, k) at k * nx + i, as the file stores it) as a
+// north-up raster in memory, whose bilinear reading between cell centres is the terrain
+// module's.
+terrain::GriddedField as_field(const Grid& g, const std::vector<double>& south_up) {
+  terrain::GridGeometry geometry{
+      g.nx, g.ny, g.x0 - 0.5 * g.dx, g.y0 + (static_cast<double>(g.ny) - 0.5) * g.dy, g.dx, g.dy};
+  std::vector<double> north_up(g.nx * g.ny);
+  for (std::size_t k = 0; k < g.ny; ++k) {
+    for (std::size_t i = 0; i < g.nx; ++i)
+      north_up[(g.ny - 1 - k) * g.nx + i] = south_up[k * g.nx + i];
   }
-};
+  return terrain::GriddedField(geometry, std::move(north_up), g.crs_wkt);
+}
 
 // The lines where `depth` falls to `level`, traced by GDAL's contouring on the cell centres,
 // into a layer of 2D line strings held in memory.
-GDALDatasetUniquePtr trace_contours(const GridMap& depth, double level,
+GDALDatasetUniquePtr trace_contours(const terrain::GriddedField& depth, double level,
                                     const std::filesystem::path& result) {
-  const Grid& g = depth.grid;
+  const terrain::GridGeometry& g = depth.geometry();
   const auto fail = [&](const std::string& what) {
     throw std::runtime_error("cannot trace the inundation line of " + quoted(result) + ": " + what +
                              gdal_detail());
@@ -67,24 +56,19 @@ GDALDatasetUniquePtr trace_contours(const GridMap& depth, double level,
   GDALDriver* vector_driver = GetGDALDriverManager()->GetDriverByName("Memory");
   if (!raster_driver || !vector_driver) fail("GDAL has no in-memory driver");
   const GDALDatasetUniquePtr raster(raster_driver->Create(
-      "", static_cast<int>(g.nx), static_cast<int>(g.ny), 1, GDT_Float64, nullptr));
+      "", static_cast<int>(g.columns), static_cast<int>(g.rows), 1, GDT_Float64, nullptr));
   if (!raster) fail("no raster in memory");
-  // North-up, pixel centres on the cell centres (as the GeoTIFF maps).
-  double gt[6] = {
-      g.x0 - 0.5 * g.dx, g.dx, 0.0, g.y0 + (static_cast<double>(g.ny) - 0.5) * g.dy, 0.0, -g.dy};
-  raster->SetGeoTransform(gt);
-  std::vector<double> north_up(g.nx * g.ny);
-  for (std::size_t k = 0; k < g.ny; ++k) {
-    for (std::size_t i = 0; i < g.nx; ++i) {
-      const double v = depth.values[k * g.nx + i];
-      north_up[(g.ny - 1 - k) * g.nx + i] = std::isnan(v) ? kNoData : v;
-    }
+  std::array<double, 6> gt = g.geotransform();
+  raster->SetGeoTransform(gt.data());
+  std::vector<double> values = depth.values();
+  for (double& v : values) {
+    if (std::isnan(v)) v = kNoData;
   }
   GDALRasterBand* band = raster->GetRasterBand(1);
   band->SetNoDataValue(kNoData);
-  if (band->RasterIO(GF_Write, 0, 0, static_cast<int>(g.nx), static_cast<int>(g.ny),
-                     north_up.data(), static_cast<int>(g.nx), static_cast<int>(g.ny), GDT_Float64,
-                     0, 0, nullptr) != CE_None) {
+  if (band->RasterIO(GF_Write, 0, 0, static_cast<int>(g.columns), static_cast<int>(g.rows),
+                     values.data(), static_cast<int>(g.columns), static_cast<int>(g.rows),
+                     GDT_Float64, 0, 0, nullptr) != CE_None) {
     fail("cannot fill the raster in memory");
   }
   GDALDatasetUniquePtr lines(vector_driver->Create("", 0, 0, 0, GDT_Unknown, nullptr));
@@ -114,7 +98,9 @@ struct Line {
   double max_x = 0.0, max_y = 0.0;
 };
 
-std::vector<Line> lines_with_ground(OGRLayer& contours, const GridMap& bed) {
+// `bed`: the bed at the cell centres; none for a flat scene (z = 0).
+std::vector<Line> lines_with_ground(OGRLayer& contours,
+                                    const std::optional<terrain::GriddedField>& bed) {
   std::vector<Line> out;
   contours.ResetReading();
   for (auto& feature : contours) {
@@ -125,7 +111,7 @@ std::vector<Line> lines_with_ground(OGRLayer& contours, const GridMap& bed) {
     Line line;
     for (int p = 0; p < traced->getNumPoints(); ++p) {
       const double x = traced->getX(p), y = traced->getY(p);
-      const double z = bed.values.empty() ? 0.0 : bed.at(x, y);
+      const double z = bed ? bed->sample(x, y) : 0.0;
       line.points.addPoint(x, y, z);
       if (z > line.max_ground_m) {
         line.max_ground_m = z;
@@ -214,16 +200,16 @@ bool has_tsunami_maps(const std::filesystem::path& result) {
 std::optional<InundationSummary> export_inundation_line(const std::filesystem::path& result,
                                                         const std::filesystem::path& file,
                                                         VectorFile format) {
-  GridMap depth, bed;
+  Grid grid;
+  std::vector<double> max_depth, bed_values;
   std::optional<double> still_m;
   double wet_depth_m = kNaN;
   {
     const ResultReader in(result);
-    depth.grid = in.grid();
-    depth.values = in.values("max_depth");
+    grid = in.grid();
+    max_depth = in.values("max_depth");
     wet_depth_m = in.number(in.variable("max_depth"), "wet_depth_threshold_m");
-    bed.grid = depth.grid;
-    if (in.has("bed_elevation")) bed.values = in.values("bed_elevation");
+    if (in.has("bed_elevation")) bed_values = in.values("bed_elevation");
     still_m = still_level(in);
   }
   if (!std::isfinite(wet_depth_m)) {
@@ -231,7 +217,10 @@ std::optional<InundationSummary> export_inundation_line(const std::filesystem::p
                              " does not say its wet depth (max_depth has no "
                              "wet_depth_threshold_m): is it a finished swe-mps result?");
   }
-  if (depth.grid.nx < 2 || depth.grid.ny < 2) return std::nullopt;
+  if (grid.nx < 2 || grid.ny < 2) return std::nullopt;
+  const terrain::GriddedField depth = as_field(grid, max_depth);
+  std::optional<terrain::GriddedField> bed;
+  if (!bed_values.empty()) bed = as_field(grid, bed_values);
 
   register_gdal_drivers();
   const QuietGdalErrors quiet;
@@ -243,7 +232,7 @@ std::optional<InundationSummary> export_inundation_line(const std::filesystem::p
   std::error_code ec;
   std::filesystem::remove(partial, ec);
   try {
-    write_lines(lines, depth.grid, still_m, partial, format);
+    write_lines(lines, grid, still_m, partial, format);
   } catch (...) {
     std::filesystem::remove(partial, ec);
     throw;
