@@ -581,8 +581,10 @@ BuiltScene build(const Scenario& scene) {
   // Effects in the order they act within their stage.
   std::vector<std::unique_ptr<swe::Effect>> effects;
   if (scene.splitting) {
+    splitting::SplittingSettings split = *scene.splitting;
+    split.radius_cap_area_ratio = scene.numerics.area_ratio_cap();
     effects.push_back(std::make_unique<splitting::ParticleSplitting>(
-        *scene.splitting,
+        split,
         std::vector<boundaries::WallSegment>(walls.segments().begin(), walls.segments().end())));
   }
   // A level bed exerts no force: its elevation is set once on the particles (and inherited

@@ -589,7 +589,7 @@ std::optional<ManningSpec> read_friction(const json* v, const std::filesystem::p
 
 std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   if (v == nullptr) return std::nullopt;
-  const Object o(*v, "/splitting", {"threshold", "alpha_s", "max_particles", "axis"},
+  const Object o(*v, "/splitting", {"threshold", "alpha_s", "max_particles", "axis", "min_depth"},
                  "an object (empty for the defaults)");
   splitting::SplittingSettings s;
   // A threshold at or below 1 splits particles that have not grown; above 4 the tip is
@@ -607,6 +607,7 @@ std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   s.max_particles = static_cast<std::size_t>(cap);
   const std::string_view axis = choice(o, "axis", {"minor", "major"}, "minor");
   s.axis = axis == "major" ? splitting::SplitAxis::major : splitting::SplitAxis::minor;
+  s.min_depth_m = non_negative(o, "min_depth", kMetres, s.min_depth_m);
   return s;
 }
 

@@ -120,7 +120,11 @@ void ParticleSplitting::apply(swe::StepContext& context) {
   // made in index order, so the particles the cap refuses never depend on the threads.
   oversized_.assign(n, 0);
   parallel_for(n, [&](std::size_t i) {
-    oversized_[i] = p.area[i] > settings_.area_ratio_threshold * p.initial_area[i];
+    const double area = p.area[i], reference = p.initial_area[i];
+    const double cap = settings_.radius_cap_area_ratio;
+    const bool alone = cap > 0.0 && area >= cap * reference;
+    const bool film = p.volume[i] < settings_.min_depth_m * reference;
+    oversized_[i] = area > settings_.area_ratio_threshold * reference && !alone && !film;
   });
   for (std::size_t i = 0; i < n; ++i) {
     if (!oversized_[i]) continue;

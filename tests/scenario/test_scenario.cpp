@@ -238,8 +238,11 @@ std::vector<Broken> broken_effect_scenes() {
        "/splitting/max_particles", "found 2.5, expected a whole number from 0"},
       {"max_particles as a string", with_key("splitting", R"({"max_particles": "100"})"),
        "/splitting/max_particles", "found a string \"100\""},
+      {"negative splitting min_depth", with_key("splitting", R"({"min_depth": -0.001})"),
+       "/splitting/min_depth", "found -0.001, expected a number >= 0"},
       {"misspelt splitting key", with_key("splitting", R"({"treshold": 2})"), "/splitting/treshold",
-       "one of the keys threshold, alpha_s, max_particles, axis (did you mean \"threshold\"?)"},
+       "one of the keys threshold, alpha_s, max_particles, axis, min_depth (did you mean "
+       "\"threshold\"?)"},
       {"unknown split axis", with_key("splitting", R"({"axis": "minr"})"), "/splitting/axis",
        "expected one of \"minor\", \"major\" (did you mean \"minor\"?)"},
       {"merging not an object", with_key("merging", "0.5"), "/merging",
@@ -348,7 +351,8 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
     ],
     "bed": {"plane": {"elevation": -0.2, "slope": [0.1, -0.05], "origin": [3.4, 1.0]}},
     "friction": {"manning_n": 0.025},
-    "splitting": {"threshold": 2.0, "alpha_s": 0.5, "max_particles": 100000, "axis": "major"},
+    "splitting": {"threshold": 2.0, "alpha_s": 0.5, "max_particles": 100000, "axis": "major",
+                  "min_depth": 0.002},
     "output": {
       "path": "results/../out/dam.nc",
       "times": [1.0, 0.5, 2.0, 0.5],
@@ -405,6 +409,7 @@ TEST_CASE("a full scene arrives with every field as given", "[scenario]") {
   CHECK(s.splitting->alpha_s == 0.5);
   CHECK(s.splitting->max_particles == 100000);
   CHECK(s.splitting->axis == swemps::splitting::SplitAxis::major);
+  CHECK(s.splitting->min_depth_m == 0.002);
 
   CHECK(s.output.path == (fs::absolute(base) / "out" / "dam.nc").lexically_normal());
   CHECK(s.output.times_s == std::vector<double>{0.5, 1.0, 2.0});
@@ -508,6 +513,7 @@ TEST_CASE("bed, friction and splitting arrive as given, with defaults for what i
     CHECK(s.splitting->area_ratio_threshold == 1.5);
     CHECK(s.splitting->alpha_s == 0.7);
     CHECK(s.splitting->max_particles == 0);
+    CHECK(s.splitting->min_depth_m == 1e-5);
     CHECK_FALSE(s.manning_n.has_value());
   }
   SECTION("splitting keys left out keep their defaults") {

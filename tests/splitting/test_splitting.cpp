@@ -239,3 +239,33 @@ TEST_CASE("a daughter never lands behind a wall", "[splitting][boundaries]") {
   // The particle nearest the wall was split along the wall instead.
   CHECK(s.p.x[0] == Approx(0.02));
 }
+
+TEST_CASE("no split of a film below the depth floor, nor of a particle at the radius cap",
+          "[splitting]") {
+  // Every particle has grown to ten times its A_0 (0.001); each one's volume over A_0 is
+  // ten times its depth, 2.29 to 2.71 m across the lattice.
+  auto s = lattice_with_gradients(3, 0.001);
+  const std::size_t n = s.p.fluid_count();
+  SECTION("the depth floor") {
+    splitting::SplittingSettings settings;
+    settings.min_depth_m = 2.5;
+    std::size_t above = 0;
+    for (std::size_t i = 0; i < n; ++i) above += s.p.volume[i] >= 2.5 * s.p.initial_area[i];
+    REQUIRE(above > 0);
+    REQUIRE(above < n);
+    splitting::ParticleSplitting effect(settings, {});
+    s.split(effect);
+    CHECK(effect.splits() == above);
+  }
+  SECTION("the radius cap") {
+    splitting::SplittingSettings settings;
+    settings.radius_cap_area_ratio = 8.0;  // A = 10 A_0: past it
+    splitting::ParticleSplitting capped(settings, {});
+    s.split(capped);
+    CHECK(capped.splits() == 0);
+    settings.radius_cap_area_ratio = 12.0;
+    splitting::ParticleSplitting below(settings, {});
+    s.split(below);
+    CHECK(below.splits() == n);
+  }
+}

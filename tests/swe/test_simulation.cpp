@@ -10,6 +10,7 @@
 #include "swemps/particles/seeding.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/scenario.hpp"
+#include "swemps/splitting/particle_splitting.hpp"
 #include "swemps/swe/operators.hpp"
 #include "swemps/swe/simulation.hpp"
 
@@ -252,6 +253,36 @@ TEST_CASE("eq 9's radius ignores isolated particles and stays bounded", "[swe]")
     CHECK(sim.particles().smoothing_length[0] <= bound * (1 + 1e-12));
     CHECK(sim.particles().smoothing_length[0] > pool_radius);
   }
+}
+
+TEST_CASE("a lone droplet is not split without end", "[swe][splitting]") {
+  // A pool at rest, and far from it droplets with no neighbour within reach. A droplet's summed
+  // area is 1 / w(0) at its capped radius, some 30 A_0 whatever its volume: halving it does not
+  // shrink it, and its daughters, alone as well, split again (particle_splitting.hpp). A
+  // particle at the radius cap is therefore not split. Measured without that rule: the two
+  // droplets had become 216 particles by 0.5 s (the depth floor, a thousandth of their water
+  // over A_0, had not yet stopped them).
+  constexpr double spacing = 0.1;
+  const double a0 = spacing * spacing;
+  const auto run = [&](double radius_cap_area_ratio) {
+    auto water = block(0, 1, 0, 1, 0.2, spacing);
+    water.add_fluid(8.0, 0.5, 0.0, 0.0, 0.01 * a0, 0.01, a0, 0.0);
+    water.add_fluid(12.0, 0.5, 0.3, 0.0, 0.01 * a0, 0.01, a0, 0.0);
+    const std::size_t count = water.fluid_count();
+    splitting::SplittingSettings split;
+    split.radius_cap_area_ratio = radius_cap_area_ratio;
+    std::vector<std::unique_ptr<swe::Effect>> effects;
+    effects.push_back(std::make_unique<splitting::ParticleSplitting>(
+        split, std::vector<boundaries::WallSegment>{}));
+    const auto walls = closed_box(0, 1, 0, 1, boundaries::WallCondition::slip);
+    swe::Simulation sim(water, swe::Settings{}, walls, std::move(effects));
+    sim.advance_to(0.5);
+    REQUIRE(sim.steps() > 10);
+    CHECK(std::abs(sim.relative_volume_change()) < 1e-13);
+    return sim.particles().fluid_count() - count;
+  };
+  CHECK(run(swe::Settings{}.area_ratio_cap()) == 0);
+  CHECK(run(0.0) > 10);  // the rule off: the droplets split again and again
 }
 
 TEST_CASE("neighbour counts keep the smallest, median and largest row of every summation",

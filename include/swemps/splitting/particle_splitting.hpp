@@ -19,6 +19,19 @@
 // velocities are eq 12's, shifted by one common amount so that momentum is conserved exactly too.
 // Daughters keep the parent's A_0: it is the resolution the scene asked for, and halving it would
 // make every daughter split again at once.
+//
+// A particle whose area has reached the scheme's radius cap (swe::Settings::area_ratio_cap()) is
+// not split. Its radius no longer follows its area, so its area is the kernel's, not the water's:
+// a lone particle has A = 1 / w(0) at the capped radius whatever its volume (30 A_0 with the
+// defaults), and each daughter, half as large, lands as alone as its parent and splits again.
+//
+// Nor is a particle whose water, spread over A_0, is thinner than `min_depth_m`. Splitting keeps
+// a thinning sheet at the scene's resolution by giving each particle the volume its depth fills
+// A_0 with: a particle of volume V stands for water V / A_0 deep at full resolution. Below the
+// floor the sheet is thinner than the scene resolves, and is left to coarsen: its particles keep
+// their volume and spread. Without a floor a film running down a dry slope is split generation
+// after generation (docs/splitting.md, "Films and lone particles"), its particles shrinking to
+// 1e-10 of their first volume while the time step follows them.
 
 #include <array>
 #include <cstddef>
@@ -40,6 +53,11 @@ struct SplittingSettings {
   double area_ratio_threshold = 1.5;  // split when A > threshold A_0
   double alpha_s = 0.7;               // daughter separation, in particle sizes l = sqrt(A) (eq 10)
   std::size_t max_particles = 0;      // no split beyond this many particles; 0 = no cap
+  // No split of a particle whose volume over A_0 is below this depth (see above); 0: no floor.
+  double min_depth_m = 1e-5;
+  // The area ratio A/A_0 at which the scheme's radius stops growing; a particle at or past it is
+  // not split (see above). Set from the numerics when the scene is built; 0: no such rule.
+  double radius_cap_area_ratio = 0.0;
   SplitAxis axis = SplitAxis::minor;
 };
 
