@@ -22,6 +22,7 @@
 
 #include "swemps/boundaries/hydrograph.hpp"
 #include "swemps/boundaries/inflow_line.hpp"
+#include "swemps/hydrology/rain.hpp"
 #include "swemps/cli/output.hpp"
 #include "swemps/cli/output_target.hpp"
 #include "swemps/cli/report_text.hpp"
@@ -411,6 +412,16 @@ double particles_section(const scenario::Scenario& scene, swe::Simulation& sim) 
     row("  " + in.name,
         fmt::format("spacing {} m; {} m3 by the end time, about {} particles ({})",
                     num(in.spacing_m), num(o.volume_m3), count(o.particles), o.depth_assumed));
+  }
+  row("rain", scene.rain.empty() ? "none" : count(double(scene.rain.size())));
+  for (const auto& effect : sim.effects()) {
+    const auto* rain = dynamic_cast<const hydrology::Rain*>(effect.get());
+    if (!rain) continue;
+    row("  " + std::string(rain->name()),
+        fmt::format("{} cells of {} m2 ({} m2); {} m3 falls by the end time, before losses",
+                    count(double(rain->cell_count())), num(rain->cell_area_m2()),
+                    num(rain->rain_area_m2()),
+                    num(rain->rate().volume(0.0, scene.end_time_s) * rain->rain_area_m2())));
   }
   const auto& split = scene.splitting;
   row("splitting", !split ? "off"

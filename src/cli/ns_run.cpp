@@ -296,8 +296,11 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
     const double volume = static_cast<double>(p.fluid) * particle_volume;
     const double lost = static_cast<double>(sim.totals().lost_particles) * particle_volume;
     file.update_statistics(sim.time(), state);
-    file.sample_series(sim.time(), at_gauges,
-                       {volume, 0.0, lost, (volume - (initial_volume - lost)) / initial_volume});
+    file.sample_series(
+        sim.time(), at_gauges,
+        io::BalanceSample{.in_domain_m3 = volume,
+                          .outflow_m3 = lost,
+                          .relative_error = (volume - (initial_volume - lost)) / initial_volume});
 
     const double front = ns::front_position<Dim>(p, l0);
     const bool stepped = sim.steps() > 0;

@@ -114,8 +114,11 @@ class SweOutput {
                            wet ? surface : kNaN});
     }
     const auto& ledger = sim.ledger();
-    const io::BalanceSample balance{sim.fluid_volume(), ledger.added_m3, ledger.removed_m3,
-                                    sim.relative_volume_change()};
+    const io::BalanceSample balance{.in_domain_m3 = sim.fluid_volume(),
+                                    .inflow_m3 = ledger.added_m3,
+                                    .rain_m3 = ledger.rain_m3,
+                                    .outflow_m3 = ledger.removed_m3,
+                                    .relative_error = sim.relative_volume_change()};
     file_.sample_series(sim.time(), at_gauges, balance);
     sampled_ = true;
     sampled_step_ = sim.steps();
@@ -295,9 +298,9 @@ void log_summary(const swe::Simulation& sim, const std::string& ending,
                omp_get_max_threads());
   const auto& ledger = sim.ledger();
   spdlog::info(
-      "volume: initial {:.12g} m3, in {:.6g} m3, out {:.6g} m3, now {:.12g} m3, relative change "
-      "{:.3e}",
-      ledger.initial_m3, ledger.added_m3, ledger.removed_m3, sim.fluid_volume(),
+      "volume: initial {:.12g} m3, in {:.6g} m3, rain {:.6g} m3, out {:.6g} m3, now {:.12g} m3, "
+      "relative change {:.3e}",
+      ledger.initial_m3, ledger.added_m3, ledger.rain_m3, ledger.removed_m3, sim.fluid_volume(),
       sim.relative_volume_change());
   spdlog::info(
       "time per phase: sort {:.3f} s, neighbours {:.3f} s, depth {:.3f} s, gradient {:.3f} s, "

@@ -45,6 +45,14 @@ const ValueColumn kLevel{
     "level", {"level", "eta", "elevation"}, "level, eta, elevation", {"m"}, "m", "time_s,level_m",
     false};
 
+const ValueColumn kRain{"rain rate",
+                        {"rain", "rainfall", "rate", "intensity"},
+                        "rain, rainfall, rate, intensity",
+                        {"mm/h", "mm_h", "mm/hr", "mmh-1", "mmhr-1"},
+                        "mm/h",
+                        "time_s,rain_mm_h",
+                        true};
+
 std::string lower_without_spaces(std::string_view s) {
   std::string out;
   for (const char c : s) {
@@ -190,6 +198,10 @@ std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::pa
 
 std::vector<std::array<double, 2>> read_level_csv(const std::filesystem::path& path) {
   return read_series(path, kLevel);
+}
+
+std::vector<std::array<double, 2>> read_rain_csv(const std::filesystem::path& path) {
+  return read_series(path, kRain);
 }
 
 }  // namespace swemps::io

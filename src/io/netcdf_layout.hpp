@@ -376,11 +376,13 @@ class Definer {
         series_var("volume_in_domain", balance_dims, 1, "m3", "volume of water in the domain");
     ids.inflow =
         series_var("volume_inflow", balance_dims, 1, "m3", "cumulative volume that flowed in");
+    ids.rain = series_var("volume_rain", balance_dims, 1, "m3",
+                          "cumulative volume of rain that reached the water, after losses");
     ids.outflow = series_var("volume_outflow", balance_dims, 1, "m3",
                              "cumulative volume that flowed out or was removed");
     ids.error = series_var("volume_error", balance_dims, 1, "1",
-                           "relative volume balance error: (in domain - (initial + inflow - "
-                           "outflow)) / reference volume");
+                           "relative volume balance error: (in domain - (initial + inflow + "
+                           "rain - outflow)) / reference volume");
     if (gauges.empty()) return;
 
     int gauge_dim = -1;
@@ -481,6 +483,7 @@ class Resumer {
     ids.series_time = variable("series_time");
     ids.in_domain = variable("volume_in_domain");
     ids.inflow = variable("volume_inflow");
+    ids.rain = variable("volume_rain");
     ids.outflow = variable("volume_outflow");
     ids.error = variable("volume_error");
     int gauge_dim = -1;

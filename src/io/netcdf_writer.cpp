@@ -225,6 +225,7 @@ void NetcdfWriter::write_series(double time_s, std::span<const GaugeSample> gaug
     const char* purpose;
   } balance_values[] = {{ids_.in_domain, balance.in_domain_m3, "write variable volume_in_domain"},
                         {ids_.inflow, balance.inflow_m3, "write variable volume_inflow"},
+                        {ids_.rain, balance.rain_m3, "write variable volume_rain"},
                         {ids_.outflow, balance.outflow_m3, "write variable volume_outflow"},
                         {ids_.error, balance.relative_error, "write variable volume_error"}};
   for (const auto& b : balance_values) {

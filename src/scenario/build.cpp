@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "boundary_effects.hpp"
+#include "hydrology_effects.hpp"
 #include "starting_surface.hpp"
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
@@ -534,8 +535,8 @@ Terrain read_terrain(const Scenario& scene) {
 }
 
 // The lattice the balanced bed term sees the bed on: the finest water body's seeding lattice,
-// or without water bodies one of the finest inflow's spacing from the domain's corner (with
-// neither, a hundredth of the domain's shorter side). It reaches past the domain by the
+// or without water bodies one of the finest inflow's or rain's spacing from the domain's corner
+// (with neither, a hundredth of the domain's shorter side). It reaches past the domain by the
 // widest support a particle can take (h = kappa sqrt(cap A_0)).
 std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
                                                         const Terrain& terrain,
@@ -550,12 +551,7 @@ std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
     // node under its kernel, so a lattice at a hundredth of a narrow domain (0.6 m under
     // 4 m particles) made the bed term 125 s of a 143 s run (docs/verification.md).
     double spacing = std::min(d.x_max - d.x_min, d.y_max - d.y_min) / 100.0;
-    if (!scene.inflows.empty()) {
-      spacing =
-          std::min_element(scene.inflows.begin(), scene.inflows.end(),
-                           [](const auto& a, const auto& b) { return a.spacing_m < b.spacing_m; })
-              ->spacing_m;
-    }
+    if (const double finest = finest_spacing(scene); finest > 0.0) spacing = finest;
     geometry = {d.x_min, d.y_min, spacing, spacing, spacing * spacing};
   }
   double widest_cell = geometry.node_area_m2;
@@ -563,6 +559,8 @@ std::shared_ptr<const swe::BedLattice> make_bed_lattice(const Scenario& scene,
     widest_cell = std::max(widest_cell, body.spacing_m * body.spacing_m);
   for (const auto& inflow : scene.inflows)
     widest_cell = std::max(widest_cell, inflow.spacing_m * inflow.spacing_m);
+  for (const auto& rain : scene.rain)
+    widest_cell = std::max(widest_cell, rain.spacing_m * rain.spacing_m);
   const double margin = 2.0 * scene.numerics.kappa *
                         std::sqrt(scene.numerics.area_ratio_cap() * widest_cell) *
                         (1.0 + swe::ConservativeScheme::kSearchMargin);
@@ -636,6 +634,9 @@ BuiltScene build(const Scenario& scene) {
   const auto& d = terrain.domain;
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
+  // Rain finds the water over its cells where the step left it, every particle that left the
+  // domain gone; what it creates is summed before merging may take it.
+  for (const auto& rain : scene.rain) effects.push_back(make_rain(rain, terrain));
   // Merging removes particles too, so it comes after every effect that reads the positions
   // before the move; it merges the particles let in this step only once they are summed.
   if (scene.merging) {

@@ -702,10 +702,11 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {
   const json root = parse_json(text);
   const DefaultsRecord as_read(root);
-  const Object o(root, "", {"name",   "description", "gravity",      "end_time",       "numerics",
-                            "model",  "dimension",   "ns",           "domain",         "water",
-                            "walls",  "bed",         "friction",     "splitting",      "merging",
-                            "inflow", "outflow",     "fault_source", "sea_boundaries", "output"},
+  const Object o(root, "", {"name",   "description", "gravity",  "end_time",     "numerics",
+                            "model",  "dimension",   "ns",       "domain",       "water",
+                            "walls",  "bed",         "friction", "splitting",    "merging",
+                            "inflow", "rain",        "outflow",  "fault_source", "sea_boundaries",
+                            "output"},
                  "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
@@ -746,10 +747,12 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
   s.splitting = read_splitting(o.find("splitting"));
   s.merging = read_merging(o.find("merging"), s.splitting);
   s.inflows = read_inflows(o.find("inflow"), s.water, base_dir);
-  if (s.water.empty() && s.inflows.empty()) {
+  s.rain = read_rain(o.find("rain"), s.water, s.inflows, base_dir);
+  if (s.water.empty() && s.inflows.empty() && s.rain.empty()) {
     const json* water = o.find("water");
     throw ScenarioError(o.path("water"), water ? describe(*water) : kMissing,
-                        "a non-empty array of water bodies, or an \"inflow\" to bring water in");
+                        "a non-empty array of water bodies, or an \"inflow\" or \"rain\" to "
+                        "bring water in");
   }
   s.outflows = read_outflows(o.find("outflow"));
   s.fault_source = read_fault_source(o.find("fault_source"));

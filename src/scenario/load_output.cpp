@@ -95,11 +95,12 @@ void check_grid_cells(double spacing_m, const Rectangle& bounds, const std::stri
 
 namespace {
 
-// The finest particle spacing of the scene's water and inflows.
+// The finest particle spacing of the scene's water, inflows and rain.
 double finest_spacing(const Scenario& scene) {
   double s = std::numeric_limits<double>::infinity();
   for (const WaterBody& w : scene.water) s = std::min(s, w.spacing_m);
   for (const Inflow& in : scene.inflows) s = std::min(s, in.spacing_m);
+  for (const RainSpec& rain : scene.rain) s = std::min(s, rain.spacing_m);
   return s;
 }
 

@@ -70,6 +70,11 @@ std::vector<WaterBody> read_waters(const json_reading::json* v,
 std::vector<Inflow> read_inflows(const json_reading::json* v, const std::vector<WaterBody>& water,
                                  const std::filesystem::path& base_dir);
 std::vector<Outflow> read_outflows(const json_reading::json* v);
+// The "rain" section (load_rain.cpp): one rain object or an array of them; a rain's spacing
+// defaults to the finest of the water's and the inflows'.
+std::vector<RainSpec> read_rain(const json_reading::json* v, const std::vector<WaterBody>& water,
+                                const std::vector<Inflow>& inflows,
+                                const std::filesystem::path& base_dir);
 
 // The "fault_source" section (load_tsunami.cpp); absent: none.
 std::optional<FaultSourceSpec> read_fault_source(const json_reading::json* v);

@@ -19,6 +19,7 @@ double finest_spacing(const Scenario& scene) {
   };
   for (const auto& w : scene.water) consider(w.spacing_m);
   for (const auto& in : scene.inflows) consider(in.spacing_m);
+  for (const auto& rain : scene.rain) consider(rain.spacing_m);
   return finest;
 }
 

@@ -259,6 +259,7 @@ void Simulation::write_state(StateWriter& out) const {
   }
   out.number(ledger_.initial_m3);
   out.number(ledger_.added_m3);
+  out.number(ledger_.rain_m3);
   out.number(ledger_.removed_m3);
   for (const Field field : {&p.x, &p.y, &p.u, &p.v, &p.volume, &p.depth, &p.area, &p.initial_area,
                             &p.bed, &p.number_density, &p.smoothing_length, &p.omega}) {
@@ -300,6 +301,7 @@ void Simulation::load_state(StateReader& in) {
   VolumeLedger ledger;
   ledger.initial_m3 = in.number();
   ledger.added_m3 = in.number();
+  ledger.rain_m3 = in.number();
   ledger.removed_m3 = in.number();
   std::array<std::vector<double>, 13> fields;
   for (auto& f : fields) f = in.numbers();
@@ -559,7 +561,8 @@ void Simulation::advance(double dt_s) {
   const double added_m3 = ledger_.added_m3, removed_m3 = ledger_.removed_m3;
   run_effects(Stage::topology, dt_s);
   // Effects that add or remove particles book the volume, so an unchanged count and ledger
-  // mean the same particles in the same order.
+  // mean the same particles in the same order (rain changes volumes in place, and every
+  // particle it adds changes the count).
   numbering_kept_ = particles_.fluid_count() == n && ledger_.added_m3 == added_m3 &&
                     ledger_.removed_m3 == removed_m3;
   moved_count_ = n;
@@ -572,7 +575,7 @@ void Simulation::advance(double dt_s) {
 
 double Simulation::relative_volume_change() const {
   // Relative to all the water the run has had, so a run that starts dry has a reference too.
-  const double reference = ledger_.initial_m3 + ledger_.added_m3;
+  const double reference = ledger_.initial_m3 + ledger_.added_m3 + ledger_.rain_m3;
   if (reference == 0.0) return 0.0;
   return (fluid_volume() - ledger_.expected_m3()) / reference;
 }

@@ -231,3 +231,22 @@ TEST_CASE("check of a model ns scene reports its tank and particles", "[cli][che
   CHECK_THAT(r.output, Catch::EndsWith("check: OK — the scene can run\n"));
   CHECK(files_in(dir) == std::set<std::string>{"scenario.json"});
 }
+
+TEST_CASE("check reports the rain a scene lets fall", "[cli][check][rain]") {
+  const swemps::testing::TempDir scratch("check-rain");
+  const fs::path& dir = scratch.path();
+  std::ofstream(dir / "scenario.json") << R"({
+    "name": "rain-check", "end_time": 60,
+    "domain": {"x_min": 0, "x_max": 20, "y_min": 0, "y_max": 10},
+    "rain": {"name": "storm", "rate_mm_h": 36, "spacing": 1},
+    "output": {"path": "out.nc"}})";
+  const auto r = run_command(cli + " check " + (dir / "scenario.json").string() + " -q");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(row_value(r.output, "rain") == "1");
+  // 36 mm/h for 60 s on 200 m2: 0.12 m3.
+  CHECK_THAT(r.output, Catch::Contains("storm") &&
+                           Catch::Contains("200 cells of 1 m2 (200 m2); 0.12 m3 falls by the end "
+                                           "time, before losses"));
+  CHECK(files_in(dir) == std::set<std::string>{"scenario.json"});
+}

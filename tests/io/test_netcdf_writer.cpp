@@ -681,8 +681,8 @@ TEST_CASE("NetcdfWriter writes gauge and volume-balance series", "[io][netcdf][s
   const std::vector<Gauge> gauges{{"upstream", 10.5, -4.75}, {"bridge", 15.0, -4.0}};
   const std::vector<GaugeSample> s0{{0.25, 1.5, -0.5}, {kNaN, kNaN, kNaN}};
   const std::vector<GaugeSample> s1{{0.5, 2.0, 0.25}, {0.125, 0.75, 0.0}};
-  const BalanceSample b0{100.0, 0.0, 0.0, 0.0};
-  const BalanceSample b1{104.0, 5.0, 1.0, -1e-12};
+  const BalanceSample b0{100.0, 0.0, 0.0, 0.0, 0.0};
+  const BalanceSample b1{106.5, 5.0, 2.5, 1.0, -1e-12};
   {
     NetcdfWriter w(file, layout_of(grid, false, gauges), metadata());
     CHECK_THROWS_AS(w.write_series(0.0, std::vector<GaugeSample>(1), b0), std::invalid_argument);
@@ -717,14 +717,15 @@ TEST_CASE("NetcdfWriter writes gauge and volume-balance series", "[io][netcdf][s
   CHECK(r.all_doubles("gauge_v") == std::vector<double>{-0.5, fill, 0.25, 0.0, 0.25, 0.0});
   CHECK(r.text("gauge_u", "units") == "m s-1");
 
-  CHECK(r.all_doubles("volume_in_domain") == std::vector<double>{100.0, 104.0, 104.0});
+  CHECK(r.all_doubles("volume_in_domain") == std::vector<double>{100.0, 106.5, 106.5});
   CHECK(r.all_doubles("volume_inflow") == std::vector<double>{0.0, 5.0, 5.0});
+  CHECK(r.all_doubles("volume_rain") == std::vector<double>{0.0, 2.5, 2.5});
   CHECK(r.all_doubles("volume_outflow") == std::vector<double>{0.0, 1.0, 1.0});
   CHECK(r.all_doubles("volume_error") == std::vector<double>{0.0, -1e-12, -1e-12});
   CHECK(r.text("volume_in_domain", "units") == "m3");
   CHECK(r.text("volume_error", "units") == "1");
   for (const char* name : {"gauge_depth", "gauge_u", "gauge_v", "volume_in_domain", "volume_inflow",
-                           "volume_outflow", "volume_error"}) {
+                           "volume_rain", "volume_outflow", "volume_error"}) {
     INFO("variable " << name);
     CHECK(r.compressed(name, 4));
     CHECK(r.numbers(name, "_FillValue") == std::vector<double>{fill});
@@ -736,7 +737,7 @@ TEST_CASE("NetcdfWriter without gauges defines no gauge variables", "[io][netcdf
   const fs::path file = tmp.path() / "no_gauges.nc";
   {
     NetcdfWriter w(file, layout_of(small_grid(), false), metadata());
-    w.write_series(0.0, {}, BalanceSample{1.0, 0.0, 0.0, 0.0});
+    w.write_series(0.0, {}, BalanceSample{1.0, 0.0, 0.0, 0.0, 0.0});
     w.finish();
   }
   Reader r(file);

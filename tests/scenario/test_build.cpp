@@ -465,7 +465,9 @@ TEST_CASE("Manning friction takes the n under each particle", "[scenario][build]
   swemps::swe::Settings settings;
   swemps::swe::VolumeLedger ledger;
   const double dt = 0.1;
-  swemps::swe::StepContext context{p, neighbors, kernel, {}, {}, settings, ledger, 0.0, dt};
+  std::vector<double> no_acceleration(2, 0.0);
+  swemps::swe::StepContext context{
+      p, neighbors, kernel, no_acceleration, no_acceleration, settings, ledger, 0.0, dt};
   friction.apply(context);
   // u_new = u / (1 + dt g n^2 |u| / h^(4/3)), each with its own n.
   const double g = settings.gravity_m_s2;

@@ -100,6 +100,34 @@ TEST_CASE("Manning friction reproduces the closed-form decay exactly", "[swe][fr
   CHECK(std::hypot(p.u[2], p.v[2]) < 0.01);
 }
 
+TEST_CASE("Manning friction holds steady uniform flow at Manning's velocity whatever the step",
+          "[swe][friction]") {
+  // Water pushed down a slope S (a = g S along x) settles where g n^2 U^2 / h^(4/3) = g S:
+  // U = h^(2/3) S^(1/2) / n. Thin water takes steps long against U / a; they must not slow it.
+  // With the speed after the acceleration in the factor, the 2 s step settles 32 % slow.
+  const double h = 0.011, n = 0.02, slope = 0.01, g = 9.81;
+  const double manning = std::pow(h, 2.0 / 3.0) * std::sqrt(slope) / n;  // 0.25 m/s
+  for (const double dt : {0.01, 0.5, 2.0}) {
+    particles::SweParticles p;
+    p.add_fluid(0, 0, 0.0, 0.0, 0.011, h, 1.0, 0);
+    neighbors::NeighborList nl;
+    const swe::ParticleKernel w(swe::KernelShape::spiky);
+    std::vector<double> ax{g * slope}, ay{0.0};
+    swe::Settings settings;
+    swe::VolumeLedger ledger;
+    swe::ManningFriction friction(n);
+    const int steps = static_cast<int>(300.0 / dt);
+    for (int step = 0; step < steps; ++step) {
+      p.u[0] += dt * ax[0];  // the integrator's velocity update, then the velocity stage
+      swe::StepContext context{p, nl, w, ax, ay, settings, ledger, step * dt, dt};
+      friction.apply(context);
+    }
+    INFO("dt " << dt << " s");
+    CHECK(p.u[0] == Approx(manning).epsilon(1e-9));
+    CHECK(p.v[0] == 0.0);
+  }
+}
+
 TEST_CASE("a sheet of water slowed by friction in a simulation", "[swe][friction]") {
   // A 6 m sheet moving at 1 m/s down a walled channel: its middle feels neither end until
   // the rarefactions arrive (3 m at ~1 m/s), so at t = 1 s the middle is still a uniform

@@ -138,7 +138,8 @@ TEST_CASE("the valley flood at 60 m: maps hold the water, and the depths are the
   CHECK(compared == times.size());
 
   // Against the grid-model reference. Measured with this code: mean absolute difference
-  // 0.389 m, bias +0.176 m (0.396 and +0.179 m before splitting left films under 0.01 mm and
+  // 0.393 m, bias +0.189 m (0.389 and +0.176 m before friction's factor took the speed the step
+  // started with; 0.396 and +0.179 m before splitting left films under 0.01 mm and
   // particles at the radius cap alone; 0.391 and +0.184 m before partly wet planes reached their
   // roots, docs/performance.md "Third lever"; 0.412 and +0.218 m before the repaired neighbour rows
   // changed the order of sums, round-off the 3 h flood grows; 0.405 and +0.210 m before the planes'
@@ -162,7 +163,8 @@ TEST_CASE("the valley flood at 60 m: maps hold the water, and the depths are the
   // 0.090 m, bias -0.034 m, and the repaired neighbour rows, which change only the order of
   // sums, by 0.096 m and -0.036 m (taking the planes' arrangement error out moved them by
   // 0.093 m, partly wet planes that reach their roots by 0.093 m and -0.004 m, and splitting's
-  // depth floor and radius cap by 0.088 m and -0.004 m). A change of the
+  // depth floor and radius cap by 0.088 m and -0.004 m, friction's factor on the speed the step
+  // started with by 0.092 m and +0.015 m). A change of the
   // order of any sum remakes the stored result, with the round-off shown to be all it changed; a
   // change of the numerics remakes it with its measure against the reference above.
   swemps::io::RasterRequest stored_request;

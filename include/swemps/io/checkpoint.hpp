@@ -24,7 +24,8 @@
 
 namespace swemps::io {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+// Version 2: the volume ledger books rain apart from inflow.
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 
 // A checkpoint that cannot be used: missing, not a checkpoint, damaged, of another version or
 // another scene.

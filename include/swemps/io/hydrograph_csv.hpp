@@ -19,6 +19,9 @@
 //  - A level series is read by the same rules, its second column named `level`, `eta` or
 //    `elevation`, with the unit `m` if any (`time_s,level_m`, `t [s], eta [m]`); levels may
 //    be negative (a datum above the sea bed's lowest point is common).
+//  - A rain series is read by the same rules, its second column named `rain`, `rainfall`,
+//    `rate` or `intensity`, with the unit `mm/h` if any (`time_s,rain_mm_h`,
+//    `t [s], rain [mm/h]`); rates are >= 0.
 
 #include <array>
 #include <filesystem>
@@ -32,5 +35,7 @@ namespace swemps::io {
 std::vector<std::array<double, 2>> read_hydrograph_csv(const std::filesystem::path& path);
 // The (time s, level m) points of a level series, in file order; errors as above.
 std::vector<std::array<double, 2>> read_level_csv(const std::filesystem::path& path);
+// The (time s, rate mm/h) points of a rain series, in file order; errors as above.
+std::vector<std::array<double, 2>> read_rain_csv(const std::filesystem::path& path);
 
 }  // namespace swemps::io

@@ -85,8 +85,10 @@ struct GaugeSample {
 struct BalanceSample {
   double in_domain_m3 = 0.0;  // water in the domain now
   double inflow_m3 = 0.0;     // cumulative since the start
+  double rain_m3 = 0.0;       // cumulative since the start: rain that reached the water
   double outflow_m3 = 0.0;    // cumulative since the start
-  // (in_domain - (initial + inflow - outflow)) / reference volume, computed by the caller.
+  // (in_domain - (initial + inflow + rain - outflow)) / reference volume, computed by the
+  // caller.
   double relative_error = 0.0;
 };
 
@@ -104,7 +106,7 @@ struct NetcdfIds {
   int time = -1, depth = -1, surface = -1, u = -1, v = -1;
   int count = -1, px = -1, py = -1, pu = -1, pv = -1, ph = -1, pvol = -1, parea = -1;
   int series_time = -1, gauge_depth = -1, gauge_surface = -1, gauge_u = -1, gauge_v = -1;
-  int in_domain = -1, inflow = -1, outflow = -1, error = -1;
+  int in_domain = -1, inflow = -1, rain = -1, outflow = -1, error = -1;
 };
 }  // namespace detail
 

@@ -79,7 +79,7 @@ swe::Simulation make_simulation(const Scenario& scene);
 // when no raster cell lies whole inside the bounds.
 swe::RegularGrid output_grid(const Scenario& scene, const Terrain& terrain);
 
-// The smallest spacing the scene creates particles at (water bodies and inflows); 0 when it
+// The smallest spacing the scene creates particles at (water bodies, inflows and rain); 0 when it
 // creates none.
 double finest_spacing(const Scenario& scene);
 

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "swemps/hydrology/rain.hpp"
 #include "swemps/maps/flood_statistics.hpp"
 #include "swemps/maps/hazard.hpp"
 #include "swemps/ns/settings.hpp"
@@ -141,6 +142,20 @@ struct Inflow {
   std::optional<std::array<double, 2>> direction;
 };
 
+// Rain over the domain or a polygon of it (hydrology/rain.hpp, docs/rain.md).
+struct RainSpec {
+  std::string name;
+  std::string key_path;  // where the file gives it ("/rain" or "/rain/2"), for messages
+  // (time s, rate mm/h) points, or a CSV file of them (absolute path); one point is a
+  // constant rate.
+  std::variant<std::vector<std::array<double, 2>>, std::filesystem::path> rate_mm_h;
+  std::vector<Point> polygon;  // empty: the whole domain
+  double spacing_m = 0.0;      // of the rain's cells and the particles it creates
+  double creation_depth_m = hydrology::RainSettings::kDefaultCreationDepthM;
+  double initial_loss_mm = 0.0;
+  double continuing_loss_mm_h = 0.0;
+};
+
 // A polyline water leaves the domain through.
 struct Outflow {
   std::vector<Point> line;  // >= 2 points
@@ -254,6 +269,7 @@ struct Scenario {
   std::optional<splitting::SplittingSettings> splitting;  // absent: no splitting
   std::optional<splitting::MergingSettings> merging;      // absent: no merging
   std::vector<Inflow> inflows;
+  std::vector<RainSpec> rain;
   std::vector<Outflow> outflows;
   std::optional<FaultSourceSpec> fault_source;  // absent: none
   std::vector<SeaBoundarySpec> sea_boundaries;

@@ -23,8 +23,9 @@ namespace swemps::swe {
 struct VolumeLedger {
   double initial_m3 = 0.0;
   double added_m3 = 0.0;    // e.g. inflow
+  double rain_m3 = 0.0;     // rain that reached the water (after its losses)
   double removed_m3 = 0.0;  // e.g. outflow, particles leaving the domain
-  double expected_m3() const { return initial_m3 + added_m3 - removed_m3; }
+  double expected_m3() const { return initial_m3 + added_m3 + rain_m3 - removed_m3; }
 };
 
 // Where in the step an effect acts (the step order is documented in simulation.hpp).
@@ -42,7 +43,9 @@ struct StepContext {
   const neighbors::NeighborList& neighbors;  // valid in the resolution, forces and velocity stages
   // The scheme's kernel: pair weights from the particles' own radii (smoothing_length).
   const ParticleKernel& kernel;
-  std::span<double> accel_x, accel_y;  // m s^-2, fluid particles; forces stage
+  // m s^-2, fluid particles: the forces stage adds to them; the velocity stage reads the
+  // step's acceleration in them (friction takes the speed the step started with).
+  std::span<double> accel_x, accel_y;
   const Settings& settings;
   VolumeLedger& ledger;
   double time_s;  // at the start of the step

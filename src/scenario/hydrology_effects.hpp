@@ -1,0 +1,19 @@
+#pragma once
+// The effects of the water a scene brings from above: rain and its losses. Internal to the
+// scenario module: build.cpp adds them to the simulation in their order within the topology
+// stage.
+
+#include <cstddef>
+#include <memory>
+
+#include "swemps/scenario/build.hpp"
+#include "swemps/scenario/scenario.hpp"
+#include "swemps/swe/effect.hpp"
+
+namespace swemps::scenario {
+
+// A rain of the scene (its rate file read now) over the terrain's domain; ScenarioError at its
+// key.
+std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain& terrain);
+
+}  // namespace swemps::scenario
