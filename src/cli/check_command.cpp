@@ -168,8 +168,11 @@ void rasters_section(const scenario::Scenario& scene, const scenario::Terrain& t
     any = true;
   }
   if (scene.manning_n && terrain.roughness) {
-    raster_rows("Manning's n", std::get<scenario::RasterSpec>(*scene.manning_n).path,
-                *terrain.roughness, terrain.domain);
+    const auto* land_use = std::get_if<scenario::LandUseSpec>(&*scene.manning_n);
+    raster_rows(
+        land_use ? "Manning's n of land use" : "Manning's n",
+        land_use ? land_use->raster.path : std::get<scenario::RasterSpec>(*scene.manning_n).path,
+        *terrain.roughness, terrain.domain);
     any = true;
   }
   for (std::size_t i = 0; i < scene.water.size() && i < terrain.water_depth.size(); ++i) {

@@ -175,7 +175,10 @@ GDALDatasetUniquePtr warp_band(GDALDataset& source, int band_index,
 
   ArgumentList arguments;
   arguments.add("-of").add("MEM").add("-t_srs").add(to_wkt2(target));
-  arguments.add("-r").add("bilinear").add("-ot").add("Float64");
+  arguments.add("-r")
+      .add(request.resampling == RasterRequest::Resampling::nearest ? "near" : "bilinear")
+      .add("-ot")
+      .add("Float64");
   if (grid) {
     const auto text = [](double v) {
       std::ostringstream s;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -97,16 +98,19 @@ class SceneCrs {
   // Reads the raster; reader errors become scenario errors at `json_path`. A raster without
   // a CRS in a scene that has one (or the reverse) could lie anywhere relative to the others.
   Field read(const RasterSpec& spec, const std::string& purpose, const std::string& setting,
-             const std::string& json_path) {
-    return read_surface(spec, purpose, setting, json_path, 1).field;
+             const std::string& json_path,
+             io::RasterRequest::Resampling resampling = io::RasterRequest::Resampling::bilinear) {
+    return read_surface(spec, purpose, setting, json_path, 1, resampling).field;
   }
 
   // The same, as a surface refined `refinement` times where it is warped
   // (io::read_raster_surface).
-  io::RasterSurface read_surface(const RasterSpec& spec, const std::string& purpose,
-                                 const std::string& setting, const std::string& json_path,
-                                 std::size_t refinement) {
-    const io::RasterRequest r = request(spec, purpose, setting);
+  io::RasterSurface read_surface(
+      const RasterSpec& spec, const std::string& purpose, const std::string& setting,
+      const std::string& json_path, std::size_t refinement,
+      io::RasterRequest::Resampling resampling = io::RasterRequest::Resampling::bilinear) {
+    io::RasterRequest r = request(spec, purpose, setting);
+    r.resampling = resampling;
     try {
       io::RasterSurface surface = io::read_raster_surface(r, refinement);
       const Field& field = surface.field;
@@ -194,6 +198,36 @@ void check_positive(const Field& field, const Rectangle& domain, const std::stri
   throw ScenarioError(json_path,
                       "Manning's n = " + fmt(n) + " in the cell centred at " + fmt_point(x, y),
                       "values > 0 (s m^-1/3) over the domain");
+}
+
+// The Manning's n of each cell of a land-use raster from its class's entry in `table`. Every
+// class the friction may sample from inside the domain (cells within one cell of it) must be in
+// the table; classes beyond it, which the friction never samples, take the table's first n, so
+// that no class the water cannot reach needs an entry.
+Field roughness_of_land_use(const Field& classes, const std::map<long long, double>& table,
+                            const Rectangle& domain, const std::string& json_path) {
+  const auto missing = first_cell_near(classes, domain, [&](double c) {
+    return !std::isnan(c) && (c != std::round(c) || !table.contains(std::llround(c)));
+  });
+  if (missing) {
+    const auto [x, y, c] = *missing;
+    std::string known;
+    for (const auto& [code, n] : table) known += (known.empty() ? "" : ", ") + std::to_string(code);
+    throw ScenarioError(
+        json_path,
+        "the land-use class " + fmt(c) + " in the cell centred at " + fmt_point(x, y) +
+            ", which /friction/land_use_manning_n does not list",
+        "a Manning's n for every class over the domain (the table lists " + known + ")");
+  }
+  std::vector<double> n(classes.values().size(), std::numeric_limits<double>::quiet_NaN());
+  const double fallback = table.begin()->second;
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    const double c = classes.values()[k];
+    if (std::isnan(c) || c != std::round(c)) continue;
+    const auto it = table.find(std::llround(c));
+    n[k] = it != table.end() ? it->second : fallback;
+  }
+  return Field(classes.geometry(), std::move(n), classes.crs_wkt(), "Manning's n of land use");
 }
 
 // A raster of a starting disturbance (a surface's rise, a velocity component) need not cover
@@ -515,6 +549,13 @@ Terrain read_terrain(const Scenario& scene) {
       check_covers(*field, terrain.domain, path, "a Manning's n raster");
       check_positive(*field, terrain.domain, path);
       terrain.roughness = field;
+    } else if (const auto* land_use = std::get_if<LandUseSpec>(&*scene.manning_n)) {
+      const std::string path = "/friction/land_use_raster";
+      const Field classes = crs.read(land_use->raster, "land-use raster", "friction.crs", path,
+                                     io::RasterRequest::Resampling::nearest);
+      check_covers(classes, terrain.domain, path, "a land-use raster");
+      terrain.roughness = std::make_shared<const Field>(
+          roughness_of_land_use(classes, land_use->manning_n, terrain.domain, path));
     }
   }
   terrain.water_depth.resize(scene.water.size());

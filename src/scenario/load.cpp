@@ -565,28 +565,6 @@ BedSpec read_bed(const json* v, const std::filesystem::path& base_dir) {
   return spec;
 }
 
-std::optional<ManningSpec> read_friction(const json* v, const std::filesystem::path& base_dir) {
-  if (v == nullptr) return std::nullopt;
-  const Object o(*v, "/friction", {"manning_n", "manning_n_raster", "crs"},
-                 "an object with \"manning_n\" or \"manning_n_raster\"");
-  const bool uniform = o.find("manning_n") != nullptr;
-  const bool map = o.find("manning_n_raster") != nullptr;
-  if (uniform && map) {
-    throw ScenarioError(o.path(), "both \"manning_n\" and \"manning_n_raster\"",
-                        "exactly one of \"manning_n\" or \"manning_n_raster\"");
-  }
-  if (map) {
-    return RasterSpec{
-        file_path(o, "manning_n_raster", "a raster of Manning's n (s m^-1/3)", base_dir),
-        crs_text(o)};
-  }
-  if (o.find("crs") != nullptr) {
-    throw ScenarioError(o.path("crs"), "a \"crs\" with \"manning_n\"",
-                        "no \"crs\" here (it goes with \"manning_n_raster\")");
-  }
-  return positive(o, "manning_n", "s m^-1/3");
-}
-
 std::optional<splitting::SplittingSettings> read_splitting(const json* v) {
   if (v == nullptr) return std::nullopt;
   const Object o(*v, "/splitting", {"threshold", "alpha_s", "max_particles", "axis", "min_depth"},
@@ -634,6 +612,10 @@ void check_crs_keys(const Scenario& s) {
   if (s.manning_n) {
     const auto* map = std::get_if<RasterSpec>(&*s.manning_n);
     if (map && !map->crs.empty()) given.emplace_back("/friction/crs", map->crs);
+    const auto* land_use = std::get_if<LandUseSpec>(&*s.manning_n);
+    if (land_use && !land_use->raster.crs.empty()) {
+      given.emplace_back("/friction/crs", land_use->raster.crs);
+    }
   }
   for (std::size_t i = 0; i < s.water.size(); ++i) {
     const auto* depth = std::get_if<DepthRaster>(&s.water[i].depth);

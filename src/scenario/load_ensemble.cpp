@@ -311,7 +311,8 @@ std::string rebased(const std::string& text, const std::filesystem::path& scene_
 }
 
 // Every key of a scene that names a file: the readers' file_path() calls (load.cpp,
-// load_water.cpp, load_flows.cpp). A new one must be added here, or members lose its file.
+// load_water.cpp, load_flows.cpp, load_tsunami.cpp, load_rain.cpp). A new one must be added here,
+// or members lose its file.
 void rebase_files(json& scene, const std::filesystem::path& scene_dir,
                   const std::filesystem::path& member_folder) {
   const auto at = [&](json& holder, const char* key) {
@@ -327,9 +328,16 @@ void rebase_files(json& scene, const std::filesystem::path& scene_dir,
     for (json& element : *it) at(element, key);
   };
   if (scene.contains("bed")) at(scene["bed"], "raster");
-  if (scene.contains("friction")) at(scene["friction"], "manning_n_raster");
+  if (scene.contains("friction")) {
+    at(scene["friction"], "manning_n_raster");
+    at(scene["friction"], "land_use_raster");
+  }
   each("water", "depth_raster");
   each("inflow", "hydrograph_csv");
+  each("sea_boundaries", "series_csv");
+  // Rain is one object or an array of them.
+  if (scene.contains("rain")) at(scene["rain"], "rate_csv");
+  each("rain", "rate_csv");
 }
 
 }  // namespace

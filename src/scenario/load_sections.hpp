@@ -84,6 +84,10 @@ std::vector<SeaBoundarySpec> read_sea_boundaries(const json_reading::json* v,
                                                  const std::vector<WaterBody>& water,
                                                  const std::filesystem::path& base_dir);
 
+// The "friction" section (load_friction.cpp); absent: no friction.
+std::optional<ManningSpec> read_friction(const json_reading::json* v,
+                                         const std::filesystem::path& base_dir);
+
 // The "output" section, read after everything it refers to (load_output.cpp).
 Output read_output(const json_reading::json* v, const Scenario& scene,
                    const std::filesystem::path& base_dir);

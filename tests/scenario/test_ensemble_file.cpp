@@ -29,6 +29,7 @@ const char* kBaseScene = R"({
              "depth_raster": "/absolute/depth.tif", "spacing": 0.1}],
   "inflow": [{"line": [[0, 0], [0, 1]], "hydrograph_csv": "q.csv", "depth": 0.5},
              {"line": [[1, 0], [1, 1]], "hydrograph": [[0, 0], [10, 5], [20, 0]], "depth": 0.5}],
+  "rain": {"rate_csv": "rain/storm.csv"},
   "output": {"path": "base.nc", "interval": 0.5}
 })";
 
@@ -168,6 +169,7 @@ TEST_CASE("a member's scene has its values, its own output and the base scene's 
   };
   CHECK(from_member(scene["bed"]["raster"]) == f.scene_dir / "terrain" / "dem.tif");
   CHECK(from_member(scene["inflow"][0]["hydrograph_csv"]) == f.scene_dir / "q.csv");
+  CHECK(from_member(scene["rain"]["rate_csv"]) == f.scene_dir / "rain" / "storm.csv");
   CHECK(from_member(scene["water"][0]["depth_raster"]) == f.scene_dir / "other" / "depth.tif");
   const std::string wrapped = scene["friction"]["manning_n_raster"];
   CHECK(wrapped == "NETCDF:\"" +

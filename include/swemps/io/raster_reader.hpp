@@ -22,6 +22,10 @@ struct RasterRequest {
   std::string purpose = "raster";       // what the raster is for ("bed raster"), in messages
   std::string crs_setting = "bed.crs";  // the scene key that sets target_crs, in messages
   int band = 1;                         // 1-based, as in GDAL
+  // How a warp resamples: bilinear for surfaces (elevation, depth, n), nearest for classes
+  // (land use), whose codes must not be averaged into codes that mean nothing.
+  enum class Resampling { bilinear, nearest };
+  Resampling resampling = Resampling::bilinear;
   // The memory reading may take, in bytes (the machine's); 0: no limit. A raster whose cells
   // would need more (kRasterBytesPerCell each) is refused before any of them is read.
   std::uint64_t memory_limit_bytes = 0;

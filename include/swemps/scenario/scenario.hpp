@@ -5,6 +5,7 @@
 
 #include <array>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -127,8 +128,16 @@ struct RasterBedSpec {
 };
 using BedSpec = std::variant<std::monostate, PlaneBedSpec, ProfileBedSpec, RasterBedSpec>;
 
-// Manning's n (s m^-1/3): one value for the whole bed, or a roughness map (land use).
-using ManningSpec = std::variant<double, RasterSpec>;
+// A land-use map: a raster of whole-number classes and the Manning's n of each class
+// (s m^-1/3). Build turns it into a roughness map; every class met over the domain must have an n.
+struct LandUseSpec {
+  RasterSpec raster;
+  std::map<long long, double> manning_n;  // class -> n, > 0
+};
+
+// Manning's n (s m^-1/3): one value for the whole bed, a roughness map, or a land-use map and
+// its table.
+using ManningSpec = std::variant<double, RasterSpec, LandUseSpec>;
 
 // A line water enters through, at the rate of a discharge hydrograph.
 struct Inflow {
