@@ -67,6 +67,7 @@ Rain::Rain(RainSettings settings, boundaries::Hydrograph rate_m_s)
   }
   pending_m_.assign(cells_.size(), 0.0);
   initial_left_m_.assign(cells_.size(), settings_.losses.initial_m);
+  for (const auto& point : rate_.points()) peak_rate_m_s_ = std::max(peak_rate_m_s_, point[1]);
 }
 
 std::array<double, 2> Rain::cell_centre(std::size_t k) const {
@@ -85,7 +86,6 @@ std::int64_t Rain::cell_at(double x, double y) const {
 }
 
 void Rain::covered_cells(double x, double y, double area, std::vector<std::uint32_t>& out) const {
-  out.clear();
   const std::int64_t own = cell_at(x, y);
   // A particle whose area is not a positive number (none should be) covers its own cell.
   const double reach = std::sqrt(area);
@@ -119,10 +119,8 @@ void Rain::covered_cells(double x, double y, double area, std::vector<std::uint3
 }
 
 double Rain::time_step_limit(const swe::Settings& /*settings*/, double /*time_s*/) const {
-  double peak_m_s = 0.0;
-  for (const auto& point : rate_.points()) peak_m_s = std::max(peak_m_s, point[1]);
-  if (!(peak_m_s > 0.0)) return std::numeric_limits<double>::infinity();
-  return settings_.creation_depth_m / peak_m_s;
+  if (!(peak_rate_m_s_ > 0.0)) return std::numeric_limits<double>::infinity();
+  return settings_.creation_depth_m / peak_rate_m_s_;
 }
 
 void Rain::apply(swe::StepContext& context) {
@@ -135,11 +133,16 @@ void Rain::apply(swe::StepContext& context) {
   auto& p = context.particles;
   const std::size_t n = p.fluid_count();
 
-  over_count_.assign(cells_.size(), 0);
+  // The cells each particle covers, found once: particle i's are covered_[covered_start_[i],
+  // covered_start_[i + 1]).
+  covered_.clear();
+  covered_start_.assign(1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     covered_cells(p.x[i], p.y[i], p.area[i], covered_);
-    for (const std::uint32_t k : covered_) ++over_count_[k];
+    covered_start_.push_back(covered_.size());
   }
+  over_count_.assign(cells_.size(), 0);
+  for (const std::uint32_t k : covered_) ++over_count_[k];
 
   const double continuing_m = settings_.losses.continuing_m_s * dt;
   share_m3_.assign(cells_.size(), 0.0);
@@ -164,9 +167,10 @@ void Rain::apply(swe::StepContext& context) {
 
   double booked_m3 = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    covered_cells(p.x[i], p.y[i], p.area[i], covered_);
     double gain_m3 = 0.0;
-    for (const std::uint32_t k : covered_) gain_m3 += share_m3_[k];
+    for (std::size_t j = covered_start_[i]; j < covered_start_[i + 1]; ++j) {
+      gain_m3 += share_m3_[covered_[j]];
+    }
     if (!(gain_m3 > 0.0)) continue;
     // Rain falls with no horizontal momentum: the particle keeps its momentum V u, so its
     // velocity falls by V / (V + dV), as the depth-averaged momentum equation's rain term says.

@@ -35,6 +35,17 @@ std::array<double, 2> towards_centre(const std::array<Point, 2>& line, const Rec
 
 }  // namespace
 
+SeriesPoints series_points(const std::variant<SeriesPoints, std::filesystem::path>& source,
+                           SeriesPoints (*read_csv)(const std::filesystem::path&),
+                           const std::string& csv_path, const std::string& expected) {
+  if (const auto* table = std::get_if<SeriesPoints>(&source)) return *table;
+  try {
+    return read_csv(std::get<std::filesystem::path>(source));
+  } catch (const std::runtime_error& e) {
+    throw ScenarioError(csv_path, e.what(), expected);
+  }
+}
+
 double slack_for(const Rectangle& r) {
   return 1e-9 * std::max({1.0, std::abs(r.x_min), std::abs(r.x_max), std::abs(r.y_min),
                           std::abs(r.y_max)});
@@ -43,17 +54,9 @@ double slack_for(const Rectangle& r) {
 std::unique_ptr<swe::Effect> make_inflow(const Inflow& in, std::size_t index,
                                          const Terrain& terrain) {
   const std::string path = json_reading::element_path("/inflow", index);
-  std::vector<std::array<double, 2>> points;
-  if (const auto* table = std::get_if<std::vector<std::array<double, 2>>>(&in.hydrograph)) {
-    points = *table;
-  } else {
-    try {
-      points = io::read_hydrograph_csv(std::get<std::filesystem::path>(in.hydrograph));
-    } catch (const std::runtime_error& e) {
-      throw ScenarioError(path + "/hydrograph_csv", e.what(),
-                          "a CSV file of time (s) and discharge (m^3/s) columns");
-    }
-  }
+  SeriesPoints points =
+      series_points(in.hydrograph, io::read_hydrograph_csv, path + "/hydrograph_csv",
+                    "a CSV file of time (s) and discharge (m^3/s) columns");
   boundaries::InflowLineSettings settings;
   settings.name = in.name;
   settings.from = in.line[0];
@@ -143,17 +146,8 @@ std::unique_ptr<swe::Effect> make_sea_boundary(const SeaBoundarySpec& spec, std:
                           on_a_wall(spec.line[1], walls, terrain.domain)};
   try {
     if (spec.level) {
-      std::vector<std::array<double, 2>> points;
-      if (const auto* table = std::get_if<std::vector<std::array<double, 2>>>(&*spec.level)) {
-        points = *table;
-      } else {
-        try {
-          points = io::read_level_csv(std::get<std::filesystem::path>(*spec.level));
-        } catch (const std::runtime_error& e) {
-          throw ScenarioError(path + "/series_csv", e.what(),
-                              "a CSV file of time (s) and level (m) columns");
-        }
-      }
+      SeriesPoints points = series_points(*spec.level, io::read_level_csv, path + "/series_csv",
+                                          "a CSV file of time (s) and level (m) columns");
       settings.level = boundaries::LevelSeries(std::move(points));
     } else if (spec.still_level_m) {
       settings.still_level_m = *spec.still_level_m;

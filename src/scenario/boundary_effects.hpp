@@ -5,7 +5,10 @@
 
 #include <array>
 #include <cstddef>
+#include <filesystem>
 #include <memory>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include "swemps/particles/swe_particles.hpp"
@@ -18,6 +21,13 @@ namespace swemps::scenario {
 // Relative slack for comparing map coordinates: coordinates in the millions (projected maps)
 // must not fail a comparison by a rounding error; at least 1e-9 m elsewhere.
 double slack_for(const Rectangle& r);
+
+// The points of a series the scene gives in the file or names as a CSV file, the file read now
+// by `read_csv`; a file it cannot read is a ScenarioError at `csv_path`, expecting `expected`.
+using SeriesPoints = std::vector<std::array<double, 2>>;
+SeriesPoints series_points(const std::variant<SeriesPoints, std::filesystem::path>& source,
+                           SeriesPoints (*read_csv)(const std::filesystem::path&),
+                           const std::string& csv_path, const std::string& expected);
 
 // Inflow `index` of the scene (its hydrograph file read now); ScenarioError at its key.
 std::unique_ptr<swe::Effect> make_inflow(const Inflow& in, std::size_t index,

@@ -3,6 +3,7 @@
 #include <string>
 #include <utility>
 
+#include "boundary_effects.hpp"
 #include "swemps/boundaries/hydrograph.hpp"
 #include "swemps/hydrology/rain.hpp"
 #include "swemps/io/hydrograph_csv.hpp"
@@ -11,17 +12,8 @@ namespace swemps::scenario {
 
 std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain& terrain) {
   const std::string& path = spec.key_path;
-  std::vector<std::array<double, 2>> points;
-  if (const auto* table = std::get_if<std::vector<std::array<double, 2>>>(&spec.rate_mm_h)) {
-    points = *table;
-  } else {
-    try {
-      points = io::read_rain_csv(std::get<std::filesystem::path>(spec.rate_mm_h));
-    } catch (const std::runtime_error& e) {
-      throw ScenarioError(path + "/rate_csv", e.what(),
-                          "a CSV file of time (s) and rain rate (mm/h) columns");
-    }
-  }
+  SeriesPoints points = series_points(spec.rate_mm_h, io::read_rain_csv, path + "/rate_csv",
+                                      "a CSV file of time (s) and rain rate (mm/h) columns");
   for (auto& point : points) point[1] *= hydrology::kMetresPerSecondPerMmPerHour;
   hydrology::RainSettings settings;
   settings.name = spec.name;

@@ -28,26 +28,6 @@ double smallest_spacing(const std::vector<WaterBody>& water) {
   return s;
 }
 
-std::vector<std::array<double, 2>> read_hydrograph(const json& v, const std::string& path) {
-  const std::string expected = "an array of at least 1 [time, discharge] point (s, m^3/s)";
-  if (!v.is_array() || v.empty()) throw ScenarioError(path, describe(v), expected);
-  std::vector<std::array<double, 2>> out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string at = element_path(path, i);
-    const auto point = pair(v[i], at, "a [time, discharge] pair of numbers (s, m^3/s)");
-    if (!out.empty() && !(point[0] > out.back()[0])) {
-      throw ScenarioError(element_path(at, 0), "t = " + fmt(point[0]),
-                          "a time greater than the previous point's " + fmt(out.back()[0]) +
-                              " (times strictly increasing, seconds)");
-    }
-    if (point[1] < 0.0) {
-      throw ScenarioError(element_path(at, 1), fmt(point[1]), "a discharge >= 0 (m^3/s)");
-    }
-    out.push_back(point);
-  }
-  return out;
-}
-
 Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
                    const std::vector<WaterBody>& water, const std::filesystem::path& base_dir) {
   const Object o(v, path,
@@ -79,7 +59,7 @@ Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
     throw ScenarioError(path, "neither \"hydrograph\" nor \"hydrograph_csv\"", one_source);
   }
   if (table) {
-    in.hydrograph = read_hydrograph(*table, o.path("hydrograph"));
+    in.hydrograph = read_time_series(*table, o.path("hydrograph"), {"discharge", "m^3/s", true});
   } else {
     in.hydrograph = file_path(o, "hydrograph_csv", "a CSV file of times and discharges", base_dir);
   }
@@ -123,6 +103,33 @@ Inflow read_inflow(const json& v, const std::string& path, std::size_t index,
 }
 
 }  // namespace
+
+std::vector<std::array<double, 2>> read_time_series(const json& v, const std::string& path,
+                                                    const SeriesValue& value,
+                                                    const std::string& expected) {
+  const std::string name(value.name), unit(value.unit);
+  if (!v.is_array() || v.empty()) {
+    throw ScenarioError(path, describe(v),
+                        expected.empty()
+                            ? "an array of at least 1 [time, " + name + "] point (s, " + unit + ")"
+                            : expected);
+  }
+  std::vector<std::array<double, 2>> out;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string at = element_path(path, i);
+    const auto point = pair(v[i], at, "a [time, " + name + "] pair of numbers (s, " + unit + ")");
+    if (!out.empty() && !(point[0] > out.back()[0])) {
+      throw ScenarioError(element_path(at, 0), "t = " + fmt(point[0]),
+                          "a time greater than the previous point's " + fmt(out.back()[0]) +
+                              " (times strictly increasing, seconds)");
+    }
+    if (value.non_negative && point[1] < 0.0) {
+      throw ScenarioError(element_path(at, 1), fmt(point[1]), "a " + name + " >= 0 (" + unit + ")");
+    }
+    out.push_back(point);
+  }
+  return out;
+}
 
 std::vector<Inflow> read_inflows(const json* v, const std::vector<WaterBody>& water,
                                  const std::filesystem::path& base_dir) {

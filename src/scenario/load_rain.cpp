@@ -23,27 +23,10 @@ const std::string kRateExpected =
     "a rate in mm/h >= 0, or an array of at least 1 [time, rate] point (s, mm/h)";
 
 std::vector<std::array<double, 2>> read_rate(const json& v, const std::string& path) {
-  if (v.is_number()) {
-    const double rate = finite_number(v, path, kRateExpected);
-    if (rate < 0.0) throw ScenarioError(path, fmt(rate) + " mm/h", "a rain rate >= 0 (mm/h)");
-    return {{0.0, rate}};
-  }
-  if (!v.is_array() || v.empty()) throw ScenarioError(path, describe(v), kRateExpected);
-  std::vector<std::array<double, 2>> out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string at = element_path(path, i);
-    const auto point = pair(v[i], at, "a [time, rate] pair of numbers (s, mm/h)");
-    if (!out.empty() && !(point[0] > out.back()[0])) {
-      throw ScenarioError(element_path(at, 0), "t = " + fmt(point[0]),
-                          "a time greater than the previous point's " + fmt(out.back()[0]) +
-                              " (times strictly increasing, seconds)");
-    }
-    if (point[1] < 0.0) {
-      throw ScenarioError(element_path(at, 1), fmt(point[1]) + " mm/h", "a rain rate >= 0 (mm/h)");
-    }
-    out.push_back(point);
-  }
-  return out;
+  if (!v.is_number()) return read_time_series(v, path, {"rain rate", "mm/h", true}, kRateExpected);
+  const double rate = finite_number(v, path, kRateExpected);
+  if (rate < 0.0) throw ScenarioError(path, fmt(rate) + " mm/h", "a rain rate >= 0 (mm/h)");
+  return {{0.0, rate}};
 }
 
 double finest_creating_spacing(const std::vector<WaterBody>& water,

@@ -65,6 +65,19 @@ std::vector<WaterBody> read_waters(const json_reading::json* v,
                                    const std::filesystem::path& base_dir, double default_spacing_m,
                                    swe::SchemeKind scheme);
 
+// A series of [time, value] points (load_flows.cpp): a non-empty array, times strictly
+// increasing, values >= 0 where `value` says so. `expected` replaces the message for a value
+// that is not such an array (empty: "an array of at least 1 [time, <name>] point").
+struct SeriesValue {
+  std::string_view name;  // "discharge", in messages
+  std::string_view unit;  // "m^3/s"
+  bool non_negative = false;
+};
+std::vector<std::array<double, 2>> read_time_series(const json_reading::json& v,
+                                                    const std::string& path,
+                                                    const SeriesValue& value,
+                                                    const std::string& expected = {});
+
 // The "inflow" and "outflow" sections (load_flows.cpp); an inflow's spacing defaults to the
 // finest of the water's.
 std::vector<Inflow> read_inflows(const json_reading::json* v, const std::vector<WaterBody>& water,

@@ -68,23 +68,6 @@ FaultPlaneSpec read_plane(const json& v, const std::string& path) {
   return spec;
 }
 
-std::vector<std::array<double, 2>> read_level_points(const json& v, const std::string& path) {
-  const std::string expected = "an array of at least 1 [time, level] point (s, m)";
-  if (!v.is_array() || v.empty()) throw ScenarioError(path, describe(v), expected);
-  std::vector<std::array<double, 2>> out;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string at = element_path(path, i);
-    const auto point = pair(v[i], at, "a [time, level] pair of numbers (s, m)");
-    if (!out.empty() && !(point[0] > out.back()[0])) {
-      throw ScenarioError(element_path(at, 0), "t = " + fmt(point[0]),
-                          "a time greater than the previous point's " + fmt(out.back()[0]) +
-                              " (times strictly increasing, seconds)");
-    }
-    out.push_back(point);
-  }
-  return out;
-}
-
 SeaBoundarySpec read_sea_boundary(const json& v, const std::string& path, std::size_t index,
                                   const std::vector<WaterBody>& water,
                                   const std::filesystem::path& base_dir) {
@@ -129,7 +112,7 @@ SeaBoundarySpec read_sea_boundary(const json& v, const std::string& path, std::s
       throw ScenarioError(path, "neither \"series\" nor \"series_csv\"", one_source);
     }
     if (series) {
-      b.level = read_level_points(*series, o.path("series"));
+      b.level = read_time_series(*series, o.path("series"), {"level", "m"});
     } else {
       b.level = file_path(o, "series_csv", "a CSV file of times and levels", base_dir);
     }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <random>
 
+#include "../support/effect_stepper.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
 #include "swemps/boundaries/hydrograph.hpp"
 #include "swemps/boundaries/inflow_line.hpp"
@@ -24,24 +25,7 @@ using Vec = std::array<double, 2>;
 
 namespace {
 
-// What an effect needs from a step, without a simulation around it.
-struct Stepper {
-  particles::SweParticles particles;
-  neighbors::NeighborList neighbors;
-  swe::ParticleKernel kernel{swe::KernelShape::spiky};
-  std::vector<double> accel_x, accel_y;
-  swe::Settings settings;
-  swe::VolumeLedger ledger;
-
-  void step(swe::Effect& effect, double t, double dt, std::span<const double> previous_x = {},
-            std::span<const double> previous_y = {}) {
-    swe::StepContext context{particles, neighbors, kernel, accel_x, accel_y,
-                             settings,  ledger,    t,      dt};
-    context.previous_x = previous_x;
-    context.previous_y = previous_y;
-    effect.apply(context);
-  }
-};
+using Stepper = testing::EffectStepper;
 
 // A line across x = 0 from y = 0 to y = 1, the water entering towards +x.
 InflowLineSettings line_at_x0(double spacing, std::optional<double> depth) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "../support/effect_stepper.hpp"
 #include "swemps/boundaries/hydrograph.hpp"
 #include "swemps/hydrology/rain.hpp"
 #include "swemps/swe/state_record.hpp"
@@ -19,20 +20,7 @@ namespace {
 
 constexpr double kMmH = hydrology::kMetresPerSecondPerMmPerHour;
 
-struct Stepper {
-  particles::SweParticles particles;
-  neighbors::NeighborList neighbors;
-  swe::ParticleKernel kernel{swe::KernelShape::spiky};
-  std::vector<double> accel_x, accel_y;
-  swe::Settings settings;
-  swe::VolumeLedger ledger;
-
-  void step(swe::Effect& effect, double t, double dt) {
-    swe::StepContext context{particles, neighbors, kernel, accel_x, accel_y,
-                             settings,  ledger,    t,      dt};
-    effect.apply(context);
-  }
-};
+using Stepper = testing::EffectStepper;
 
 // A 10 m x 4 m domain in cells of 1 m.
 RainSettings ten_by_four() {

@@ -103,13 +103,15 @@ class Rain final : public swe::Effect {
   std::size_t particles_created() const { return created_; }
 
  private:
-  // The cells particle i covers (see the header comment), in `out`, as indices into cells_.
+  // Appends to `out` the cells a particle at (x, y) of `area` covers (see the header comment),
+  // as indices into cells_.
   void covered_cells(double x, double y, double area, std::vector<std::uint32_t>& out) const;
   // The index into cells_ of the cell holding (x, y), or -1 when it is not a rain cell.
   std::int64_t cell_at(double x, double y) const;
 
   RainSettings settings_;
   boundaries::Hydrograph rate_;
+  double peak_rate_m_s_ = 0.0;  // the series' largest rate, for the step limit
   double cell_dx_ = 0.0, cell_dy_ = 0.0;
   std::size_t nx_ = 0, ny_ = 0;
   // Rain cells as lattice indices j * nx_ + i, ascending; the lattice's cells map back to them
@@ -119,10 +121,11 @@ class Rain final : public swe::Effect {
   // Per rain cell: the depth gathered while dry (m) and the initial loss still to take (m).
   std::vector<double> pending_m_, initial_left_m_;
   // Scratch for a step: per rain cell the particles over it and its share for each (m^3);
-  // per particle the cells it covers.
+  // per particle the cells it covers, all in one array, particle i's from covered_start_[i].
   std::vector<std::uint32_t> over_count_;
   std::vector<double> share_m3_;
   std::vector<std::uint32_t> covered_;
+  std::vector<std::size_t> covered_start_;
   double fallen_m3_ = 0.0, lost_m3_ = 0.0, added_m3_ = 0.0;
   std::size_t created_ = 0;
 };
