@@ -20,6 +20,7 @@ outflow against time, and the relative volume error on a log axis below.
     /usr/bin/python3 tools/plot_flood_map.py run.nc --field depth --time 600 --out d600.png
     /usr/bin/python3 tools/plot_flood_map.py run.nc --dem dem.tif --out max_depth.png
     /usr/bin/python3 tools/plot_flood_map.py run.nc --balance balance.png
+    /usr/bin/python3 tools/plot_flood_map.py run.nc --buildings houses.geojson --out m.png
 """
 import argparse
 import re
@@ -250,6 +251,12 @@ def plot_map(args):
             ax.annotate(name, (px * scale, py * scale), xytext=(4, 4), textcoords="offset points",
                         fontsize=8)
 
+    if args.buildings:
+        for ring in building_rings(args.buildings):
+            xs, ys = zip(*ring)
+            ax.fill([v * scale for v in xs], [v * scale for v in ys], facecolor="0.35",
+                    edgecolor="black", linewidth=0.4)
+
     ax.set_xlim(extent[0] * scale, extent[1] * scale)
     ax.set_ylim(extent[2] * scale, extent[3] * scale)
     ax.set_aspect("equal")
@@ -309,6 +316,21 @@ def plot_balance(args):
     print(f"wrote {args.balance}")
 
 
+def building_rings(path):
+    """The outer rings of a GeoJSON file's polygons and multipolygons, in its coordinates."""
+    import json
+    with open(path) as f:
+        collection = json.load(f)
+    rings = []
+    for feature in collection.get("features", []):
+        geometry = feature.get("geometry") or {}
+        if geometry.get("type") == "Polygon":
+            rings.append(geometry["coordinates"][0])
+        elif geometry.get("type") == "MultiPolygon":
+            rings.extend(polygon[0] for polygon in geometry["coordinates"])
+    return rings
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -330,6 +352,8 @@ def main():
                     help="opacity of the field over the relief (default 0.85)")
     ap.add_argument("--width", type=float, default=8.0, help="figure width in inches")
     ap.add_argument("--dpi", type=int, default=150)
+    ap.add_argument("--buildings", help="GeoJSON file of building footprints to draw, in the "
+                    "file's coordinates")
     args = ap.parse_args()
     if args.out is None and args.balance is None:
         args.out = "flood_map.png"

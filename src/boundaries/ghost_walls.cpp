@@ -16,11 +16,36 @@ double dot(Vec a, Vec b) { return a[0] * b[0] + a[1] * b[1]; }
 double cross(Vec a, Vec b) { return a[0] * b[1] - a[1] * b[0]; }
 Vec sub(Vec a, Vec b) { return {a[0] - b[0], a[1] - b[1]}; }
 
+// Where along the path p0 -> p1 it meets the wall, as a fraction of the path in (0, 1], or a
+// negative number when it does not. The wall counts `slack` (a fraction of its length) past
+// each end: a path through the very point where two walls meet must hit one of them, which
+// exact arithmetic does not promise.
+double crossing_fraction(const WallSegment& wall, Vec p0, Vec p1, double slack) {
+  const Vec d = sub(p1, p0);
+  const Vec e = sub(wall.to, wall.from);
+  const double denom = cross(d, e);
+  if (denom == 0.0) return -1.0;  // parallel: cannot pass through
+  const Vec w = sub(wall.from, p0);
+  const double t = cross(w, e) / denom;  // along the path
+  const double s = cross(w, d) / denom;  // along the wall
+  return t > 0.0 && t <= 1.0 && s >= -slack && s <= 1.0 + slack ? t : -1.0;
+}
+
+// Fraction of a wall's length that counts past each end (crossing_fraction).
+constexpr double kEndSlack = 1e-9;
+// How far from half way (as a fraction of the path) a wall met on the way from a particle to
+// its ghost is taken as met at the mirror point (behind_another_wall).
+constexpr double kMirrorTolerance = 1e-9;
+// Reflections followed per particle and step: a path into a corner bounces off both walls; more
+// than this only in a corner sharper than any a scene should have, and then the particle goes
+// back to where the step started, which was inside.
+constexpr int kMaxReflections = 4;
+
 }  // namespace
 
-GhostWalls::GhostWalls(std::vector<WallSegment> segments) : segments_(std::move(segments)) {
-  lines_.reserve(segments_.size());
-  for (const auto& s : segments_) {
+GhostWalls::GhostWalls(std::vector<WallSegment> segments) : index_(std::move(segments)) {
+  lines_.reserve(index_.segments().size());
+  for (const auto& s : index_.segments()) {
     const Vec d = sub(s.to, s.from);
     const double length = std::hypot(d[0], d[1]);
     if (!(length > 0.0) || !std::isfinite(length)) {
@@ -42,59 +67,102 @@ void GhostWalls::add_ghosts(particles::SweParticles& p, double reach) {
     const double along = dot(rel, line.tangent);
     return along >= 0.0 && along < line.length && std::abs(dot(rel, line.normal)) < reach;
   };
-  // Which particles are near any wall, in parallel: few are, and testing every particle
-  // against every segment on one thread was a tenth of a two-thread step at 1e6 particles.
-  // Ghosts are then added by one thread in particle order, so their order never depends on
-  // the number of threads.
-  near_any_.assign(n, 0);
-  parallel_for(n, [&](std::size_t i) {
-    const Vec x{p.x[i], p.y[i]};
-    for (const Line& line : lines_) {
-      if (within_reach(line, x)) {
-        near_any_[i] = 1;
-        return;
+  // Each chunk of particles finds its walls and places its ghosts in parallel; the ghosts are
+  // then appended chunk after chunk, so their order is particle order for any thread count.
+  // Why in parallel: in a town nearly every particle is near a wall, and one thread placing
+  // them was half of the urban case's run on two.
+  chunks_.resize(reduction_chunks);
+  for (auto& chunk : chunks_) {  // a short list runs as one chunk: the others hold old work
+    chunk.near_wall.clear();
+    chunk.ghosts.clear();
+  }
+  parallel_chunks(n, [&](std::size_t c, std::size_t begin, std::size_t end) {
+    auto& out = chunks_[c];
+    std::vector<std::uint32_t> touching, near;  // segments within reach; those mirrored across
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec x{p.x[i], p.y[i]};
+      // Reflections need every segment within reach, its ends included: a particle beyond
+      // the end of both walls of a building's outer corner, in neither's half-open range,
+      // could otherwise step round the corner's tip into the building (keep_inside tests
+      // only these segments).
+      touching.clear();
+      index_.for_each_candidate(x[0] - reach, x[1] - reach, x[0] + reach, x[1] + reach,
+                                [&](std::uint32_t s) {
+                                  if (distance_to(lines_[s], x) < reach) touching.push_back(s);
+                                });
+      if (touching.empty()) continue;
+      // A segment filed under several cells is met once per cell; ascending order keeps the
+      // ghosts in the order a test of every segment gave.
+      std::sort(touching.begin(), touching.end());
+      touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
+      const auto id = static_cast<std::uint32_t>(i);
+      near.clear();
+      for (std::uint32_t s : touching) {
+        out.near_wall.emplace_back(id, s);
+        if (within_reach(lines_[s], x)) near.push_back(s);
+      }
+      for (std::uint32_t s : near) {
+        const Line& line = lines_[s];
+        const double d = dot(sub(x, line.origin), line.normal);
+        const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
+        const double ut = p.u[i] * line.tangent[0] + p.v[i] * line.tangent[1];
+        const double ghost_ut = index_.segments()[s].condition == WallCondition::slip ? ut : -ut;
+        const Vec g{x[0] - 2.0 * d * line.normal[0], x[1] - 2.0 * d * line.normal[1]};
+        if (behind_another_wall(x, g, s, s)) continue;
+        out.ghosts.push_back({id,
+                              g,
+                              {ghost_ut * line.tangent[0] - un * line.normal[0],
+                               ghost_ut * line.tangent[1] - un * line.normal[1]}});
+      }
+      // Corner: mirror across both walls (a point reflection for a right angle), so the
+      // quadrant behind the corner holds water too.
+      for (std::size_t a = 0; a < near.size(); ++a) {
+        for (std::size_t b = a + 1; b < near.size(); ++b) {
+          const Line& la = lines_[near[a]];
+          const Line& lb = lines_[near[b]];
+          if (std::abs(cross(la.tangent, lb.tangent)) < 1e-9) continue;  // parallel walls
+          Vec g = x;
+          Vec vel{p.u[i], p.v[i]};
+          for (const auto* line : {&la, &lb}) {
+            const double d = dot(sub(g, line->origin), line->normal);
+            g = {g[0] - 2.0 * d * line->normal[0], g[1] - 2.0 * d * line->normal[1]};
+            const double un = dot(vel, line->normal);
+            vel = {vel[0] - 2.0 * un * line->normal[0], vel[1] - 2.0 * un * line->normal[1]};
+          }
+          if (behind_another_wall(x, g, near[a], near[b])) continue;
+          out.ghosts.push_back({id, g, vel});
+        }
       }
     }
   });
-  std::vector<std::uint32_t> near;  // segments near the current particle
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!near_any_[i]) continue;
-    near.clear();
-    const Vec x{p.x[i], p.y[i]};
-    for (std::uint32_t s = 0; s < lines_.size(); ++s) {
-      if (within_reach(lines_[s], x)) near.push_back(s);
-    }
-    const auto id = static_cast<std::uint32_t>(i);
-    for (std::uint32_t s : near) {
-      near_wall_.emplace_back(id, s);
-      const Line& line = lines_[s];
-      const double d = dot(sub(x, line.origin), line.normal);
-      const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
-      const double ut = p.u[i] * line.tangent[0] + p.v[i] * line.tangent[1];
-      const double ghost_ut = segments_[s].condition == WallCondition::slip ? ut : -ut;
-      p.add_ghost(id, x[0] - 2.0 * d * line.normal[0], x[1] - 2.0 * d * line.normal[1],
-                  ghost_ut * line.tangent[0] - un * line.normal[0],
-                  ghost_ut * line.tangent[1] - un * line.normal[1]);
-    }
-    // Corner: mirror across both walls (a point reflection for a right angle), so the
-    // quadrant behind the corner holds water too.
-    for (std::size_t a = 0; a < near.size(); ++a) {
-      for (std::size_t b = a + 1; b < near.size(); ++b) {
-        const Line& la = lines_[near[a]];
-        const Line& lb = lines_[near[b]];
-        if (std::abs(cross(la.tangent, lb.tangent)) < 1e-9) continue;  // parallel walls
-        Vec g = x;
-        Vec vel{p.u[i], p.v[i]};
-        for (const auto* line : {&la, &lb}) {
-          const double d = dot(sub(g, line->origin), line->normal);
-          g = {g[0] - 2.0 * d * line->normal[0], g[1] - 2.0 * d * line->normal[1]};
-          const double un = dot(vel, line->normal);
-          vel = {vel[0] - 2.0 * un * line->normal[0], vel[1] - 2.0 * un * line->normal[1]};
-        }
-        p.add_ghost(id, g[0], g[1], vel[0], vel[1]);
-      }
+  for (const auto& chunk : chunks_) {
+    near_wall_.insert(near_wall_.end(), chunk.near_wall.begin(), chunk.near_wall.end());
+    for (const PlacedGhost& g : chunk.ghosts) {
+      p.add_ghost(g.particle, g.x[0], g.x[1], g.velocity[0], g.velocity[1]);
     }
   }
+}
+
+// Why: a ghost mirrored 2d behind a wall lies beyond a building thinner than 2d, among the
+// water on its far side, which would sum it as water of its own (the front street's depth
+// leaking into the back gardens). The path from the particle to its ghost meets its mirror
+// walls half way (a point reflection through a right-angled corner also half way); another
+// wall met there (a neighbour joined at that very point) does not count.
+bool GhostWalls::behind_another_wall(Vec x, Vec g, std::uint32_t a, std::uint32_t b) const {
+  bool behind = false;
+  index_.for_each_candidate(std::min(x[0], g[0]), std::min(x[1], g[1]), std::max(x[0], g[0]),
+                            std::max(x[1], g[1]), [&](std::uint32_t s) {
+                              if (behind || s == a || s == b) return;
+                              const double t = crossing_fraction(index_.segments()[s], x, g, 0.0);
+                              behind = t >= 0.0 && std::abs(t - 0.5) > kMirrorTolerance;
+                            });
+  return behind;
+}
+
+double GhostWalls::distance_to(const Line& line, Vec x) {
+  const Vec rel = sub(x, line.origin);
+  const double along = std::clamp(dot(rel, line.tangent), 0.0, line.length);
+  return std::hypot(rel[0] - along * line.tangent[0], rel[1] - along * line.tangent[1]);
 }
 
 void GhostWalls::copy_fields_to_ghosts(particles::SweParticles& p) {
@@ -108,32 +176,6 @@ void GhostWalls::copy_fields_to_ghosts(particles::SweParticles& p) {
     p.omega[k] = p.omega[i];
   }
 }
-
-namespace {
-
-// Where along the path p0 -> p1 it meets the wall, as a fraction of the path in (0, 1], or a
-// negative number when it does not. The wall counts `slack` (a fraction of its length) past
-// each end: a path through the very point where two walls meet must hit one of them, which
-// exact arithmetic does not promise.
-double crossing_fraction(const WallSegment& wall, Vec p0, Vec p1, double slack) {
-  const Vec d = sub(p1, p0);
-  const Vec e = sub(wall.to, wall.from);
-  const double denom = cross(d, e);
-  if (denom == 0.0) return -1.0;  // parallel: cannot pass through
-  const Vec w = sub(wall.from, p0);
-  const double t = cross(w, e) / denom;  // along the path
-  const double s = cross(w, d) / denom;  // along the wall
-  return t > 0.0 && t <= 1.0 && s >= -slack && s <= 1.0 + slack ? t : -1.0;
-}
-
-// Fraction of a wall's length that counts past each end (crossing_fraction).
-constexpr double kEndSlack = 1e-9;
-// Reflections followed per particle and step: a path into a corner bounces off both walls; more
-// than this only in a corner sharper than any a scene should have, and then the particle goes
-// back to where the step started, which was inside.
-constexpr int kMaxReflections = 4;
-
-}  // namespace
 
 bool GhostWalls::crosses(const WallSegment& wall, Vec p0, Vec p1) {
   // Proper or touching intersection of segment p0-p1 with the wall; ending exactly on the
@@ -167,7 +209,8 @@ std::size_t GhostWalls::keep_inside(particles::SweParticles& p, std::span<const 
       std::size_t hit = near_wall_.size();
       for (std::size_t g = k; g < group_end; ++g) {
         if (g == last_wall) continue;
-        const double t = crossing_fraction(segments_[near_wall_[g].second], start, end, kEndSlack);
+        const double t =
+            crossing_fraction(index_.segments()[near_wall_[g].second], start, end, kEndSlack);
         if (t >= 0.0 && t < first) {
           first = t;
           hit = g;

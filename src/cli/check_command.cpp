@@ -445,6 +445,33 @@ double particles_section(const scenario::Scenario& scene, swe::Simulation& sim) 
   return inflow_particles;
 }
 
+// Each building file: what it held and what the footprints became.
+void buildings_rows(const scenario::Scenario& scene, const scenario::Terrain& terrain) {
+  if (scene.buildings.empty()) return;
+  row("buildings",
+      count(double(scene.buildings.size())) + (scene.buildings.size() == 1 ? " file" : " files"));
+  for (std::size_t k = 0; k < terrain.buildings.size(); ++k) {
+    const auto& read = terrain.buildings[k];
+    const auto& spec = scene.buildings[k];
+    std::string left_out;
+    if (read.not_polygons + read.degenerate > 0) {
+      left_out = fmt::format(
+          "; left out: {} features without a polygon, {} polygons of fewer "
+          "than 3 vertices",
+          read.not_polygons, read.degenerate);
+    }
+    row("  " + spec.file.filename().string(),
+        fmt::format("layer '{}': {} footprints, {}{}", read.layer, count(double(read.footprints)),
+                    spec.as == scenario::BuildingsSpec::As::walls
+                        ? "walls"
+                        : "raised " + num(spec.height_m) + " m into the bed",
+                    left_out));
+  }
+  if (!terrain.building_walls.empty()) {
+    row("  wall segments", count(double(terrain.building_walls.size())));
+  }
+}
+
 // What a run does at each sample of its flood statistics: grid the state and add it to the
 // statistics (maps and series are written at their times only, and left out). Timed on the
 // state the scene's window reached, the faster of two (the first pays for allocations); the
@@ -529,6 +556,7 @@ void check_swe(const scenario::Scenario& scene, const Options& options) {
   const double dt_s = sim.stable_time_step();  // refreshes: ghosts and depths in place
   const double start = static_cast<double>(sim.particles().fluid_count());
   const double inflow_particles = particles_section(scene, sim);
+  buildings_rows(scene, built.terrain);
   // The need counts the particles at the start; those inflows let in come on top.
   memory_section(scenario::swe_memory_need(scene, built.terrain),
                  inflow_particles > 0.0 ? "; not counting the " + count(inflow_particles) +

@@ -362,6 +362,10 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   spdlog::info("scene '{}': {} particles, end time {} s, {} walls, {} inflows, output {}",
                scene.name, initial_particles, scene.end_time_s, scene.walls.size(),
                scene.inflows.size(), scene.output.path.string());
+  for (const auto& read : built.terrain.buildings) {
+    spdlog::info("{}: {} building footprints from layer '{}'", read.key_path, read.footprints,
+                 read.layer);
+  }
   if (restart) {
     spdlog::info("going on from checkpoint {} at t = {:.9g} s (step {})", restart->file.string(),
                  sim.time(), sim.steps());

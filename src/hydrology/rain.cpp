@@ -57,13 +57,14 @@ Rain::Rain(RainSettings settings, boundaries::Hydrograph rate_m_s)
       if (!settings_.polygon.empty() && !particles::point_in_polygon(settings_.polygon, centre)) {
         continue;
       }
+      if (settings_.roofs && settings_.roofs->contains(centre[0], centre[1])) continue;
       rain_cell_of_[j * nx_ + i] = static_cast<std::int32_t>(cells_.size());
       cells_.push_back(static_cast<std::uint32_t>(j * nx_ + i));
     }
   }
   if (cells_.empty()) {
     throw std::invalid_argument(who + "the polygon holds no cell centre of a " + std::to_string(l) +
-                                " m lattice over the domain");
+                                " m lattice over the domain outside the buildings");
   }
   pending_m_.assign(cells_.size(), 0.0);
   initial_left_m_.assign(cells_.size(), settings_.losses.initial_m);

@@ -13,6 +13,7 @@
 #include <variant>
 
 #include "boundary_effects.hpp"
+#include "buildings.hpp"
 #include "hydrology_effects.hpp"
 #include "starting_surface.hpp"
 #include "swemps/boundaries/domain_outflow.hpp"
@@ -394,6 +395,9 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
       double h = depth_at[m];
       // Below the level but beyond the rim of a lake filled from a point: dry ground.
       if (!in_lake.empty() && !in_lake[m]) continue;
+      // Inside a building's walls: no water (buildings raised into the bed are bed).
+      if (terrain.building_footprints && terrain.building_footprints->contains(point[0], point[1]))
+        continue;
       // NaN fails the test too: dry.
       if (!uniform && !(h > body.min_depth_m)) {
         if (h > 0.0) out.thin_film.push_back({point[0], point[1], z_b + h});
@@ -426,8 +430,8 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
   return out;
 }
 
-boundaries::GhostWalls make_walls(const std::vector<Wall>& walls) {
-  std::vector<boundaries::WallSegment> segments;
+boundaries::GhostWalls make_walls(const std::vector<Wall>& walls,
+                                  std::vector<boundaries::WallSegment> segments) {
   for (const auto& wall : walls) {
     const auto condition = wall.condition == WallCondition::slip
                                ? boundaries::WallCondition::slip
@@ -521,6 +525,30 @@ void rupture(const FaultSourceSpec& spec, double cell_m, Terrain& terrain) {
                                                 d.y_max, cell_m));
 }
 
+// The scene's building files, read in its CRS: footprints raised into the bed raster, or
+// kept as walls (buildings.hpp).
+void add_buildings(const Scenario& scene, Terrain& terrain) {
+  if (scene.buildings.empty()) return;
+  const std::vector<BuildingSet> sets = read_buildings(scene, terrain.crs_wkt);
+  for (const BuildingSet& set : sets) {
+    terrain.buildings.push_back(
+        {set.spec->key_path, set.layer, set.footprints.size(), set.not_polygons, set.degenerate});
+    if (set.spec->as == BuildingsSpec::As::bed && !terrain.bed_raster) {
+      throw ScenarioError(set.spec->key_path + "/as", "\"bed\" without a bed raster",
+                          "\"walls\", or a \"bed\" with a \"raster\" to raise them into");
+    }
+  }
+  const bool raised = std::any_of(sets.begin(), sets.end(), [](const BuildingSet& set) {
+    return set.spec->as == BuildingsSpec::As::bed;
+  });
+  if (raised) {
+    terrain.bed_raster = std::make_shared<const Field>(raise_buildings(sets, *terrain.bed_raster));
+    terrain.bed = std::make_shared<terrain::RasterBed>(terrain.bed_raster);
+  }
+  terrain.building_footprints = wall_footprints(sets);
+  terrain.building_walls = building_walls(sets);
+}
+
 }  // namespace
 
 Terrain read_terrain(const Scenario& scene) {
@@ -569,6 +597,7 @@ Terrain read_terrain(const Scenario& scene) {
   }
   read_starting_rasters(scene, crs, terrain);
   terrain.crs_wkt = crs.wkt();
+  add_buildings(scene, terrain);
   if (scene.fault_source) {
     rupture(*scene.fault_source, displacement_cell(scene, terrain.domain), terrain);
   }
@@ -616,7 +645,7 @@ BuiltScene build(const Scenario& scene) {
   // The rasters are in memory by now; what grows with the scene from here on is the particles
   // and the output grid, refused here rather than by the allocator.
   check_fits_in_memory(swe_memory_need(scene, terrain), usable_memory_bytes());
-  auto walls = make_walls(scene.walls);
+  auto walls = make_walls(scene.walls, terrain.building_walls);
   // Effects in the order they act within their stage.
   std::vector<std::unique_ptr<swe::Effect>> effects;
   if (scene.splitting) {

@@ -26,6 +26,7 @@ std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain& terr
   settings.losses.continuing_m_s =
       spec.continuing_loss_mm_h * hydrology::kMetresPerSecondPerMmPerHour;
   settings.bed = terrain.bed;
+  settings.roofs = terrain.building_footprints;
   try {
     return std::make_unique<hydrology::Rain>(std::move(settings),
                                              boundaries::Hydrograph(std::move(points)));

@@ -684,12 +684,12 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
                const std::string& default_name) {
   const json root = parse_json(text);
   const DefaultsRecord as_read(root);
-  const Object o(root, "", {"name",   "description", "gravity",  "end_time",     "numerics",
-                            "model",  "dimension",   "ns",       "domain",       "water",
-                            "walls",  "bed",         "friction", "splitting",    "merging",
-                            "inflow", "rain",        "outflow",  "fault_source", "sea_boundaries",
-                            "output"},
-                 "a JSON object describing the scene");
+  const Object o(
+      root, "", {"name",      "description",  "gravity",        "end_time", "numerics", "model",
+                 "dimension", "ns",           "domain",         "water",    "walls",    "buildings",
+                 "bed",       "friction",     "splitting",      "merging",  "inflow",   "rain",
+                 "outflow",   "fault_source", "sea_boundaries", "output"},
+      "a JSON object describing the scene");
   Scenario s;
   s.name = optional_string(o, "name", "a non-empty string").value_or(default_name);
   if (s.name.empty()) {
@@ -725,6 +725,7 @@ Scenario parse(const std::string& text, const std::filesystem::path& base_dir,
       read_waters(o.find("water"), domain, has_bed, base_dir, default_spacing_m, s.numerics.scheme);
   default_tank_height(s);
   s.walls = read_walls(o.find("walls"));
+  s.buildings = read_buildings(o.find("buildings"), base_dir);
   s.manning_n = read_friction(o.find("friction"), base_dir);
   s.splitting = read_splitting(o.find("splitting"));
   s.merging = read_merging(o.find("merging"), s.splitting);

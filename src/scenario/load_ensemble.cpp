@@ -338,6 +338,9 @@ void rebase_files(json& scene, const std::filesystem::path& scene_dir,
   // Rain is one object or an array of them.
   if (scene.contains("rain")) at(scene["rain"], "rate_csv");
   each("rain", "rate_csv");
+  // So are buildings.
+  if (scene.contains("buildings")) at(scene["buildings"], "file");
+  each("buildings", "file");
 }
 
 }  // namespace

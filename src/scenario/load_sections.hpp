@@ -89,6 +89,10 @@ std::vector<RainSpec> read_rain(const json_reading::json* v, const std::vector<W
                                 const std::vector<Inflow>& inflows,
                                 const std::filesystem::path& base_dir);
 
+// The "buildings" section (load_buildings.cpp): one object or an array of them.
+std::vector<BuildingsSpec> read_buildings(const json_reading::json* v,
+                                          const std::filesystem::path& base_dir);
+
 // The "fault_source" section (load_tsunami.cpp); absent: none.
 std::optional<FaultSourceSpec> read_fault_source(const json_reading::json* v);
 // The "sea_boundaries" section (load_tsunami.cpp); a boundary's spacing defaults to the finest

@@ -29,9 +29,7 @@ std::size_t ParticleMerging::nearest_partner(const particles::SweParticles& p,
     if (r2 > reach * reach) return;
     // Ties go to the lower index, so that the pairs never depend on the cells' order.
     if (r2 > best_r2 || (r2 == best_r2 && j > best)) return;
-    if (!merge_allowed(p, i, j) ||
-        boundaries::GhostWalls::crosses_any(walls_, {p.x[i], p.y[i]}, {p.x[j], p.y[j]}))
-      return;
+    if (!merge_allowed(p, i, j) || walls_.crosses_any({p.x[i], p.y[i]}, {p.x[j], p.y[j]})) return;
     best = j;
     best_r2 = r2;
   });

@@ -55,7 +55,7 @@ ParticleSplitting::ParticleSplitting(SplittingSettings settings,
     : settings_(settings), walls_(std::move(walls)) {}
 
 bool ParticleSplitting::crosses_wall(double x0, double y0, double x1, double y1) const {
-  return boundaries::GhostWalls::crosses_any(walls_, {x0, y0}, {x1, y1});
+  return walls_.crosses_any({x0, y0}, {x1, y1});
 }
 
 bool ParticleSplitting::plan_split(const swe::StepContext& context, std::size_t i,

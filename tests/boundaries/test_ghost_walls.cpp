@@ -139,3 +139,44 @@ TEST_CASE("no particle crosses a wall: a fast jet hits a wall", "[boundaries][sw
   CHECK(sim.steps() > 20);
   CHECK(std::abs(sim.relative_volume_change()) < 1e-14);
 }
+
+TEST_CASE("a particle beyond the ends of a building's walls cannot step round its corner",
+          "[boundaries]") {
+  // A square building [0, 4] x [0, 4]: the particle north-east of its corner (4, 4) is beyond
+  // the end of both walls that meet there, and its step to the south-west ends inside.
+  const std::vector<boundaries::WallSegment> walls{{{0.0, 0.0}, {4.0, 0.0}},
+                                                   {{4.0, 0.0}, {4.0, 4.0}},
+                                                   {{4.0, 4.0}, {0.0, 4.0}},
+                                                   {{0.0, 4.0}, {0.0, 0.0}}};
+  GhostWalls building(walls);
+  for (const auto& [x, y] :
+       {std::array{4.05, 4.05}, std::array{4.2, 4.01}, std::array{4.01, 4.2}}) {
+    auto p = one_particle(x, y, -1.0, -1.0);
+    building.add_ghosts(p, 0.5);
+    p.drop_ghosts();
+    const std::vector<double> old_x{p.x[0]}, old_y{p.y[0]};
+    p.x[0] -= 0.3;
+    p.y[0] -= 0.3;
+    CHECK(building.keep_inside(p, old_x, old_y) == 1);
+    INFO("from (" << x << ", " << y << ") to (" << p.x[0] << ", " << p.y[0] << ")");
+    CHECK_FALSE((p.x[0] < 4.0 && p.y[0] < 4.0));
+  }
+}
+
+TEST_CASE("no ghost stands beyond a building thinner than twice its particle's distance",
+          "[boundaries]") {
+  // A terrace 2 m deep, y in [0, 2]: a particle 1.5 m in front of it is mirrored 1.5 m into
+  // it; one 2.5 m in front would be mirrored to 0.5 m beyond its back wall, into the gardens.
+  const std::vector<boundaries::WallSegment> walls{{{-20.0, 0.0}, {20.0, 0.0}},
+                                                   {{20.0, 0.0}, {20.0, 2.0}},
+                                                   {{20.0, 2.0}, {-20.0, 2.0}},
+                                                   {{-20.0, 2.0}, {-20.0, 0.0}}};
+  GhostWalls terrace(walls);
+  auto near = one_particle(0.0, -1.5, 0.0, 0.0);
+  terrace.add_ghosts(near, 3.0);
+  REQUIRE(near.ghost_count() == 1);
+  CHECK(near.y[1] == Approx(1.5));
+  auto far = one_particle(0.0, -2.5, 0.0, 0.0);
+  terrace.add_ghosts(far, 3.0);
+  CHECK(far.ghost_count() == 0);
+}

@@ -172,6 +172,19 @@ void write_fixtures(const fs::path& dir) {
                              std::vector<double>(100, 0.0), swemps::testing::wkt_of("EPSG:4326")),
                 dir / "geographic.tif");
   write_unplaced_geotiff(dir / "unplaced.tif");
+  // UTM zone 16N: 10 x 10 cells of 1 m; a building near it in longitude/latitude, as GeoJSON
+  // without a "crs" member is.
+  write_geotiff(GriddedField(swemps::testing::grid_geometry(10, 10, 500000.0, 4000010.0, 1.0, 1.0),
+                             std::vector<double>(100, 0.0), swemps::testing::wkt_of("EPSG:32616")),
+                dir / "utm.tif");
+  write_text(dir / "lonlat.geojson",
+             R"({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {},
+                 "geometry": {"type": "Polygon", "coordinates": [[[-87.0, 36.13],
+                 [-86.9999, 36.13], [-86.9999, 36.1301], [-87.0, 36.13]]]}}]})");
+  // Land-use classes 1 and 2, and 3 in the easternmost column.
+  std::string classes = "ncols 10\nnrows 10\nxllcorner 0\nyllcorner 0\ncellsize 1\n";
+  for (int row = 0; row < 10; ++row) classes += "1 1 1 1 1 2 2 2 2 3\n";
+  write_text(dir / "land_use.asc", classes);
   fs::copy_file(dir / "dem.tif", dir / "truncated.tif");
   fs::resize_file(dir / "truncated.tif", fs::file_size(dir / "dem.tif") / 2);
   fs::copy_file(dir / "dem.tif", dir / "unreadable.tif");
@@ -370,6 +383,24 @@ std::vector<BadInput> bad_inputs() {
       input_error("target CRS GDAL does not know",
                   with_bed_raster("dem.tif", R"(, "crs": "EPSG:99999")"),
                   "at /bed/raster:", "bed.crs = \"EPSG:99999\" is not a CRS GDAL understands"),
+      input_error("building file in another CRS, without a transform",
+                  patched(R"({"domain": {"x_min": 500000, "x_max": 500010, "y_min": 4000000,
+                                         "y_max": 4000010},
+                              "water": [{"rectangle": {"x_min": 500001, "x_max": 500004,
+                                         "y_min": 4000001, "y_max": 4000004},
+                                         "depth": 0.5, "spacing": 0.5}],
+                              "bed": {"raster": "utm.tif"},
+                              "buildings": {"file": "lonlat.geojson"}})"),
+                  "at /buildings/file:", "set /buildings/reproject to true to transform it"),
+      input_error("land-use class missing from the table",
+                  patched(R"({"friction": {"land_use_raster": "land_use.asc",
+                                           "land_use_manning_n": {"1": 0.03, "2": 0.02}}})"),
+                  "at /friction/land_use_raster:", "the land-use class 3 in the cell centred at"),
+      input_error("negative rain rate", patched(R"({"rain": {"rate_mm_h": -5}})"),
+                  "at /rain/rate_mm_h:", "-5 mm/h"),
+      input_error("rain series out of order",
+                  patched(R"({"rain": {"rate_mm_h": [[0, 10], [600, 20], [300, 0]]}})"),
+                  "at /rain/rate_mm_h/2/0:", "greater than the previous point's 600"),
       input_error("bed raster nodata under the water", with_bed_raster("dem_hole.tif"),
                   "at /domain:", "1 nodata cell of the bed raster inside the domain"),
       input_error("depth raster nodata where the water starts",

@@ -29,7 +29,8 @@
 // step's. What is lost never becomes water in the domain; it is counted in volume_lost().
 //
 // The caller gives cells that lie on the ground of the domain: a polygon leaves out the parts
-// walls close off, and the rain does not look for walls.
+// walls close off, and the rain does not look for walls, except that it falls on no
+// building's footprint (RainSettings::roofs).
 
 #include <array>
 #include <cstddef>
@@ -43,6 +44,7 @@
 #include "swemps/boundaries/hydrograph.hpp"
 #include "swemps/swe/bed.hpp"
 #include "swemps/swe/effect.hpp"
+#include "swemps/terrain/footprints.hpp"
 
 namespace swemps::hydrology {
 
@@ -61,6 +63,10 @@ struct RainSettings {
   // The rain falls on the cells whose centres lie inside this polygon (>= 3 vertices);
   // empty: on the whole domain.
   std::vector<std::array<double, 2>> polygon;
+  // Footprints of buildings that are walls (null: none): cells whose centres lie under one
+  // get no rain. The walls close them off from the water, and a roof's drainage is not part
+  // of the scene: its rain is not counted as fallen (docs/buildings.md).
+  std::shared_ptr<const terrain::Footprints> roofs;
   // The depth a dry cell gathers before its water becomes a particle (m).
   double creation_depth_m = kDefaultCreationDepthM;
   RainLosses losses;

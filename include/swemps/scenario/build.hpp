@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "swemps/boundaries/wall_index.hpp"
 #include "swemps/maps/cell_averages.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/ns/tank.hpp"
@@ -15,6 +16,7 @@
 #include "swemps/swe/bed.hpp"
 #include "swemps/swe/operators.hpp"
 #include "swemps/swe/simulation.hpp"
+#include "swemps/terrain/footprints.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 #include "swemps/tsunami/okada.hpp"
 
@@ -40,6 +42,16 @@ struct Terrain {
   // east and north components; null where it names none.
   std::vector<std::shared_ptr<const terrain::GriddedField>> displacement, velocity_u, velocity_v;
   std::string crs_wkt;  // the scene's CRS (the bed raster's, or another raster's); empty: none
+  // Buildings that are walls: their footprints (null: none), under which no water is seeded
+  // and no rain falls, and their rings as wall segments.
+  std::shared_ptr<const terrain::Footprints> building_footprints;
+  std::vector<boundaries::WallSegment> building_walls;
+  // Per building file, what it held, for reports.
+  struct BuildingsRead {
+    std::string key_path, layer;
+    std::size_t footprints = 0, not_polygons = 0, degenerate = 0;
+  };
+  std::vector<BuildingsRead> buildings;
 };
 
 // Reads the rasters the scene names, warped to the scene's CRS, and settles the domain:

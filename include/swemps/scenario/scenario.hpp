@@ -108,6 +108,23 @@ struct Wall {
   WallCondition condition = WallCondition::slip;
 };
 
+// Buildings (or any obstacle) drawn as polygons in a vector file (docs/buildings.md).
+struct BuildingsSpec {
+  std::string key_path;        // where the file gives them ("/buildings" or "/buildings/1")
+  std::filesystem::path file;  // absolute
+  std::string layer;           // empty: the file's first layer
+  // walls: each ring a closed wall the water flows around; bed: the bed under each footprint
+  // raised by height_m (the water may overtop it).
+  enum class As { walls, bed };
+  As as = As::walls;
+  WallCondition condition = WallCondition::slip;  // walls
+  double height_m = kDefaultHeightM;              // bed
+  std::string crs;                                // the file's CRS when it declares none
+  bool reproject = false;                         // transform a file in another CRS to the scene's
+  // Higher than any flood a scene here has met: the water goes round, as it would a wall.
+  static constexpr double kDefaultHeightM = 10.0;
+};
+
 // Analytic beds. No bed at all (the default) is a flat bed at z = 0 and costs nothing.
 struct PlaneBedSpec {
   double elevation_m = 0.0;               // z_b at the origin
@@ -273,6 +290,7 @@ struct Scenario {
   bool domain_from_bed = false;
   std::vector<WaterBody> water;  // may be empty when there are inflows
   std::vector<Wall> walls;
+  std::vector<BuildingsSpec> buildings;
   BedSpec bed;
   std::optional<ManningSpec> manning_n;                   // absent: no friction
   std::optional<splitting::SplittingSettings> splitting;  // absent: no splitting

@@ -63,7 +63,7 @@ class ParticleMerging final : public swe::Effect {
   std::size_t nearest_partner(const particles::SweParticles& p, std::size_t i) const;
 
   MergingSettings settings_;
-  std::vector<boundaries::WallSegment> walls_;
+  boundaries::WallIndex walls_;
   // Per step: the candidates' particle indices (ascending); per particle, whether it is taken
   // and whether it was merged away.
   std::vector<std::uint32_t> candidates_;

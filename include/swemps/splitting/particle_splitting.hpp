@@ -103,7 +103,7 @@ class ParticleSplitting final : public swe::Effect {
   bool plan_split(const swe::StepContext& context, std::size_t i, Plan& plan) const;
 
   SplittingSettings settings_;
-  std::vector<boundaries::WallSegment> walls_;
+  boundaries::WallIndex walls_;
   std::vector<Plan> plans_;
   std::vector<std::uint8_t> oversized_;  // per particle: area past the threshold (apply)
   std::size_t splits_ = 0, refused_at_walls_ = 0, refused_at_cap_ = 0;
