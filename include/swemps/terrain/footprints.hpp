@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "swemps/neighbors/box_grid.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 
 namespace swemps::terrain {
@@ -39,10 +40,8 @@ class Footprints {
 
  private:
   std::vector<Footprint> footprints_;
-  std::vector<std::array<double, 4>> boxes_;  // x_min, y_min, x_max, y_max per footprint
-  double x0_ = 0.0, y0_ = 0.0, cell_ = 1.0;
-  std::size_t nx_ = 0, ny_ = 0;
-  std::vector<std::uint32_t> start_, ids_;  // cell c's footprints: ids_[start_[c] .. start_[c+1])
+  std::vector<neighbors::BoxGrid::Box> boxes_;  // per footprint
+  neighbors::BoxGrid grid_;
 };
 
 // True if (x, y) lies inside the ring (even-odd rule).
