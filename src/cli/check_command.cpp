@@ -423,8 +423,7 @@ double particles_section(const scenario::Scenario& scene, swe::Simulation& sim) 
     row("  " + std::string(rain->name()),
         fmt::format("{} cells of {} m2 ({} m2); {} m3 falls by the end time, before losses",
                     count(double(rain->cell_count())), num(rain->cell_area_m2()),
-                    num(rain->rain_area_m2()),
-                    num(rain->rate().volume(0.0, scene.end_time_s) * rain->rain_area_m2())));
+                    num(rain->rain_area_m2()), num(rain->volume_due(0.0, scene.end_time_s))));
   }
   const auto& split = scene.splitting;
   row("splitting", !split ? "off"

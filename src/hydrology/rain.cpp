@@ -10,15 +10,14 @@
 
 namespace swemps::hydrology {
 
-namespace {
+Rain::Rain(RainSettings settings, boundaries::Hydrograph rate_m_s, std::unique_ptr<RainLoss> losses)
+    : Rain(std::move(settings), std::make_unique<UniformRainRate>(std::move(rate_m_s)),
+           std::move(losses)) {}
 
-bool finite_non_negative(double v) { return std::isfinite(v) && v >= 0.0; }
-
-}  // namespace
-
-Rain::Rain(RainSettings settings, boundaries::Hydrograph rate_m_s)
-    : settings_(std::move(settings)), rate_(std::move(rate_m_s)) {
+Rain::Rain(RainSettings settings, std::unique_ptr<RainRate> rate, std::unique_ptr<RainLoss> losses)
+    : settings_(std::move(settings)), rate_(std::move(rate)), losses_(std::move(losses)) {
   if (settings_.name.empty()) throw std::invalid_argument("rain: empty name");
+  if (!rate_) throw std::invalid_argument("rain '" + settings_.name + "': no rate");
   const std::string who = "rain '" + settings_.name + "': ";
   const auto& d = settings_.domain;
   const double width = d.x_max - d.x_min, height = d.y_max - d.y_min;
@@ -31,10 +30,6 @@ Rain::Rain(RainSettings settings, boundaries::Hydrograph rate_m_s)
   }
   if (!(settings_.creation_depth_m > 0.0) || !std::isfinite(settings_.creation_depth_m)) {
     throw std::invalid_argument(who + "the creation depth must be a positive number of metres");
-  }
-  if (!finite_non_negative(settings_.losses.initial_m) ||
-      !finite_non_negative(settings_.losses.continuing_m_s)) {
-    throw std::invalid_argument(who + "losses must be finite and >= 0");
   }
   if (!settings_.polygon.empty() && settings_.polygon.size() < 3) {
     throw std::invalid_argument(who + "a polygon needs at least 3 vertices");
@@ -67,8 +62,23 @@ Rain::Rain(RainSettings settings, boundaries::Hydrograph rate_m_s)
                                 " m lattice over the domain outside the buildings");
   }
   pending_m_.assign(cells_.size(), 0.0);
-  initial_left_m_.assign(cells_.size(), settings_.losses.initial_m);
-  for (const auto& point : rate_.points()) peak_rate_m_s_ = std::max(peak_rate_m_s_, point[1]);
+  step_rain_m_.assign(cells_.size(), 0.0);
+  std::vector<std::array<double, 2>> centres(cells_.size());
+  for (std::size_t k = 0; k < cells_.size(); ++k) centres[k] = cell_centre(k);
+  try {
+    rate_->bind(centres);
+    if (losses_) losses_->bind(centres);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(who + e.what());
+  }
+}
+
+double Rain::volume_due(double t0_s, double t1_s) const {
+  std::vector<double> depth(cells_.size());
+  rate_->depth_over(t0_s, t1_s, depth);
+  double sum = 0.0;
+  for (const double d : depth) sum += d;
+  return sum * cell_area_m2();
 }
 
 std::array<double, 2> Rain::cell_centre(std::size_t k) const {
@@ -120,16 +130,19 @@ void Rain::covered_cells(double x, double y, double area, std::vector<std::uint3
 }
 
 double Rain::time_step_limit(const swe::Settings& /*settings*/, double /*time_s*/) const {
-  if (!(peak_rate_m_s_ > 0.0)) return std::numeric_limits<double>::infinity();
-  return settings_.creation_depth_m / peak_rate_m_s_;
+  const double peak = rate_->peak_m_s();
+  if (!(peak > 0.0)) return std::numeric_limits<double>::infinity();
+  return settings_.creation_depth_m / peak;
 }
 
 void Rain::apply(swe::StepContext& context) {
   const double dt = context.dt_s;
   if (!(dt > 0.0)) return;
-  const double rain_m = rate_.volume(context.time_s, context.time_s + dt);
   // No rain: nothing falls and nothing is lost (the losses take from the rain alone).
-  if (!(rain_m > 0.0)) return;
+  if (!(rate_->depth_over(context.time_s, context.time_s + dt, step_rain_m_) > 0.0)) return;
+  double fallen_m = 0.0;
+  for (const double d : step_rain_m_) fallen_m += d;
+  const double lost_m = losses_ ? losses_->take(dt, step_rain_m_) : 0.0;
   const double cell_area = cell_area_m2();
   auto& p = context.particles;
   const std::size_t n = p.fluid_count();
@@ -145,18 +158,10 @@ void Rain::apply(swe::StepContext& context) {
   over_count_.assign(cells_.size(), 0);
   for (const std::uint32_t k : covered_) ++over_count_[k];
 
-  const double continuing_m = settings_.losses.continuing_m_s * dt;
   share_m3_.assign(cells_.size(), 0.0);
   std::vector<std::uint32_t> due;  // dry cells that have gathered a particle's water
-  double lost_m = 0.0;
   for (std::size_t k = 0; k < cells_.size(); ++k) {
-    double excess_m = rain_m;
-    const double initial = std::min(initial_left_m_[k], excess_m);
-    initial_left_m_[k] -= initial;
-    excess_m -= initial;
-    const double continuing = std::min(continuing_m, excess_m);
-    excess_m -= continuing;
-    lost_m += initial + continuing;
+    const double excess_m = step_rain_m_[k];
     if (over_count_[k] > 0) {
       share_m3_[k] = (excess_m + pending_m_[k]) * cell_area / static_cast<double>(over_count_[k]);
       pending_m_[k] = 0.0;
@@ -191,7 +196,7 @@ void Rain::apply(swe::StepContext& context) {
     pending_m_[k] = 0.0;
   }
   created_ += due.size();
-  fallen_m3_ += rain_m * rain_area_m2();
+  fallen_m3_ += fallen_m * cell_area;
   lost_m3_ += lost_m * cell_area;
   added_m3_ += booked_m3;
   context.ledger.rain_m3 += booked_m3;
@@ -214,20 +219,29 @@ std::string Rain::report() const {
 void Rain::save_state(swe::StateWriter& out) const {
   // What each cell has gathered and has still to lose decides what the next steps make.
   out.numbers(pending_m_);
-  out.numbers(initial_left_m_);
+  // Without losses, the initial loss left is nought in every cell: written so, the record
+  // keeps the layout of the initial-and-continuing loss's, which earlier records had always.
+  if (losses_) {
+    losses_->save_state(out);
+  } else {
+    out.numbers(std::vector<double>(cells_.size(), 0.0));
+  }
   for (const double value : {fallen_m3_, lost_m3_, added_m3_}) out.number(value);
   out.count(created_);
 }
 
 void Rain::restore_state(swe::StateReader& in) {
   auto pending = in.numbers();
-  auto initial_left = in.numbers();
-  if (pending.size() != cells_.size() || initial_left.size() != cells_.size()) {
+  if (pending.size() != cells_.size()) {
     throw swe::StateError(in.what() + " holds rain for " + std::to_string(pending.size()) +
                           " cells, not this scene's " + std::to_string(cells_.size()));
   }
   pending_m_ = std::move(pending);
-  initial_left_m_ = std::move(initial_left);
+  if (losses_) {
+    losses_->restore_state(in);
+  } else if (in.numbers().size() != cells_.size()) {
+    throw swe::StateError(in.what() + " holds losses for another number of rain cells");
+  }
   fallen_m3_ = in.number();
   lost_m3_ = in.number();
   added_m3_ = in.number();

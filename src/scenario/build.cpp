@@ -15,6 +15,8 @@
 #include "boundary_effects.hpp"
 #include "buildings.hpp"
 #include "hydrology_effects.hpp"
+#include "rain_maps.hpp"
+#include "scene_crs.hpp"
 #include "starting_surface.hpp"
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
@@ -73,78 +75,6 @@ std::vector<Point> corners(const Rectangle& r) {
 
 // ---------------------------------------------------------------------------------------------
 // Rasters
-
-// The scene's CRS as the rasters are read one after another: the first raster with a raster
-// bed or a "crs" key settles it, and every later raster is warped to it.
-class SceneCrs {
- public:
-  // The request for a raster: to its own "crs" when it has one (`setting` names that key in
-  // messages), otherwise to the scene's CRS once known.
-  io::RasterRequest request(const RasterSpec& spec, const std::string& purpose,
-                            const std::string& setting) const {
-    io::RasterRequest r;
-    r.path = spec.path;
-    r.purpose = purpose;
-    r.memory_limit_bytes = usable_memory_bytes();
-    if (!spec.crs.empty()) {
-      r.target_crs = spec.crs;
-      r.crs_setting = setting;
-    } else {
-      r.target_crs = target_;
-      r.crs_setting = target_setting_.empty() ? setting : target_setting_;
-    }
-    return r;
-  }
-
-  // Reads the raster; reader errors become scenario errors at `json_path`. A raster without
-  // a CRS in a scene that has one (or the reverse) could lie anywhere relative to the others.
-  Field read(const RasterSpec& spec, const std::string& purpose, const std::string& setting,
-             const std::string& json_path,
-             io::RasterRequest::Resampling resampling = io::RasterRequest::Resampling::bilinear) {
-    return read_surface(spec, purpose, setting, json_path, 1, resampling).field;
-  }
-
-  // The same, as a surface refined `refinement` times where it is warped
-  // (io::read_raster_surface).
-  io::RasterSurface read_surface(
-      const RasterSpec& spec, const std::string& purpose, const std::string& setting,
-      const std::string& json_path, std::size_t refinement,
-      io::RasterRequest::Resampling resampling = io::RasterRequest::Resampling::bilinear) {
-    io::RasterRequest r = request(spec, purpose, setting);
-    r.resampling = resampling;
-    try {
-      io::RasterSurface surface = io::read_raster_surface(r, refinement);
-      const Field& field = surface.field;
-      if (known_ && field.crs_wkt().empty() != wkt_.empty()) {
-        throw ScenarioError(json_path,
-                            purpose + " '" + spec.path.string() +
-                                (wkt_.empty() ? "' with a CRS in a scene whose rasters have none"
-                                              : "' without a CRS in a scene that has one"),
-                            "every raster with a CRS, or none with one");
-      }
-      if (!known_) {
-        known_ = true;
-        wkt_ = field.crs_wkt();
-        // Later rasters follow the CRS as given (shorter in messages), else the file's own.
-        target_ = spec.crs.empty() ? wkt_ : spec.crs;
-        target_setting_ = spec.crs.empty() ? "the CRS of " + json_path : setting;
-      }
-      return surface;
-    } catch (const ScenarioError&) {
-      throw;
-    } catch (const std::runtime_error& e) {
-      throw ScenarioError(json_path, e.what(),
-                          "a raster GDAL can read, in a projected CRS in metres (or with a "
-                          "\"crs\" to warp it to)");
-    }
-  }
-
-  const std::string& wkt() const { return wkt_; }
-
- private:
-  bool known_ = false;
-  std::string wkt_, target_, target_setting_;
-};
 
 std::string nodata_cells(std::size_t count) {
   return std::to_string(count) + (count == 1 ? " nodata cell" : " nodata cells");
@@ -596,6 +526,7 @@ Terrain read_terrain(const Scenario& scene) {
     }
   }
   read_starting_rasters(scene, crs, terrain);
+  read_rain_maps(scene, crs, terrain);
   terrain.crs_wkt = crs.wkt();
   add_buildings(scene, terrain);
   if (scene.fault_source) {
@@ -706,7 +637,9 @@ BuiltScene build(const Scenario& scene) {
       boundaries::Box{d.x_min, d.x_max, d.y_min, d.y_max}));
   // Rain finds the water over its cells where the step left it, every particle that left the
   // domain gone; what it creates is summed before merging may take it.
-  for (const auto& rain : scene.rain) effects.push_back(make_rain(rain, terrain));
+  for (std::size_t i = 0; i < scene.rain.size(); ++i) {
+    effects.push_back(make_rain(scene.rain[i], terrain.rain.at(i), terrain));
+  }
   // Merging removes particles too, so it comes after every effect that reads the positions
   // before the move; it merges the particles let in this step only once they are summed.
   if (scene.merging) {

@@ -12,8 +12,9 @@
 
 namespace swemps::scenario {
 
-// A rain of the scene (its rate file read now) over the terrain's domain; ScenarioError at its
-// key.
-std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain& terrain);
+// A rain of the scene over the terrain's domain, with the maps read for it (terrain.rain) and
+// its rate file read now; ScenarioError at its key.
+std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain::RainMaps& maps,
+                                       const Terrain& terrain);
 
 }  // namespace swemps::scenario

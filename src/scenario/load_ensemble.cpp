@@ -335,9 +335,27 @@ void rebase_files(json& scene, const std::filesystem::path& scene_dir,
   each("water", "depth_raster");
   each("inflow", "hydrograph_csv");
   each("sea_boundaries", "series_csv");
-  // Rain is one object or an array of them.
-  if (scene.contains("rain")) at(scene["rain"], "rate_csv");
-  each("rain", "rate_csv");
+  // Rain is one object or an array of them, each naming files for its rate and for any of its
+  // loss parameters.
+  const auto rain_files = [&](json& rain) {
+    if (!rain.is_object()) return;
+    for (const char* key :
+         {"rate_csv", "rate_raster", "rate_netcdf", "initial_loss_mm", "continuing_loss_mm_h"}) {
+      at(rain, key);
+    }
+    if (const auto soil = rain.find("green_ampt"); soil != rain.end() && soil->is_object()) {
+      for (const char* key : {"conductivity_mm_h", "suction_mm", "moisture_deficit"}) {
+        at(*soil, key);
+      }
+    }
+  };
+  if (const auto rain = scene.find("rain"); rain != scene.end()) {
+    if (rain->is_array()) {
+      for (json& one : *rain) rain_files(one);
+    } else {
+      rain_files(*rain);
+    }
+  }
   // So are buildings.
   if (scene.contains("buildings")) at(scene["buildings"], "file");
   each("buildings", "file");

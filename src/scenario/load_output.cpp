@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "json_reading.hpp"
 #include "load_sections.hpp"
+#include "swemps/io/cf_time.hpp"
 #include "swemps/maps/flood_statistics.hpp"
 #include "swemps/scenario/scenario.hpp"
 
@@ -211,59 +213,24 @@ maps::LandUse read_land_use(const Object& o) {
   return maps::LandUse::urban;
 }
 
-// Reads `digits` decimal digits at text[at], or -1.
-int digits_at(std::string_view text, std::size_t at, std::size_t digits) {
-  if (at + digits > text.size()) return -1;
-  int value = 0;
-  for (std::size_t k = 0; k < digits; ++k) {
-    const char c = text[at + k];
-    if (c < '0' || c > '9') return -1;
-    value = value * 10 + (c - '0');
-  }
-  return value;
-}
-
-// An ISO 8601 date and time, "2024-06-01", "2024-06-01T12:00", "2024-06-01T12:00:00", each
-// optionally followed by "Z" or an offset "+02:00" (a space may stand for the "T"), as the CF
-// units of a time axis. Empty when the text is none of these.
+// An ISO 8601 date and time (io::parse_calendar_time) as the CF units of a time axis, or
+// empty when the text is not one.
 std::string cf_time_units(std::string_view text) {
-  const int year = digits_at(text, 0, 4), month = digits_at(text, 5, 2),
-            day = digits_at(text, 8, 2);
-  if (year < 0 || month < 1 || month > 12 || day < 1 || text[4] != '-' || text[7] != '-') return {};
-  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
-  const int days[] = {31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-  if (day > days[month - 1]) return {};
-  int hour = 0, minute = 0, second = 0;
-  std::size_t at = 10;
-  if (at < text.size() && (text[at] == 'T' || text[at] == ' ')) {
-    hour = digits_at(text, at + 1, 2);
-    minute = digits_at(text, at + 4, 2);
-    if (hour < 0 || hour > 23 || minute < 0 || minute > 59 || text[at + 3] != ':') return {};
-    at += 6;
-    if (at < text.size() && text[at] == ':') {
-      second = digits_at(text, at + 1, 2);
-      if (second < 0 || second > 59) return {};
-      at += 3;
-    }
+  const auto t = io::parse_calendar_time(text);
+  if (!t) return {};
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "seconds since %04d-%02d-%02d %02d:%02d:%02d", t->year,
+                t->month, t->day, t->hour, t->minute, static_cast<int>(t->second));
+  std::string units = buffer;
+  // A zone given in the text is kept, as an offset ("Z" as +00:00).
+  const std::size_t zone = text.find_first_of("Z+-", 10);
+  if (zone != std::string_view::npos) {
+    const int m = std::abs(t->offset_minutes);
+    std::snprintf(buffer, sizeof buffer, " %c%02d:%02d", t->offset_minutes < 0 ? '-' : '+', m / 60,
+                  m % 60);
+    units += buffer;
   }
-  std::string zone;
-  if (at < text.size()) {
-    const std::string_view rest = text.substr(at);
-    if (rest == "Z") {
-      zone = " +00:00";
-    } else {
-      const int zh = digits_at(rest, 1, 2), zm = digits_at(rest, 4, 2);
-      if (rest.size() != 6 || (rest[0] != '+' && rest[0] != '-') || rest[3] != ':' || zh < 0 ||
-          zh > 14 || zm < 0 || zm > 59) {
-        return {};
-      }
-      zone = " " + std::string(rest);
-    }
-  }
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "seconds since %04d-%02d-%02d %02d:%02d:%02d", year, month,
-                day, hour, minute, second);
-  return buffer + zone;
+  return units;
 }
 
 // The level every body of the scene's starting water is filled to, when they share one: a

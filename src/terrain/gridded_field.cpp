@@ -88,6 +88,12 @@ GriddedField::AxisStencil GriddedField::locate_y(double y_m) const {
   return locate((geometry_.y_top - y_m) / geometry_.cell_height - 0.5, geometry_.rows);
 }
 
+GriddedField GriddedField::scaled(double factor) const {
+  std::vector<double> values = values_;
+  for (double& v : values) v *= factor;
+  return GriddedField(geometry_, std::move(values), crs_wkt_, name_);
+}
+
 double GriddedField::sample(double x_m, double y_m) const {
   if (!std::isfinite(x_m) || !std::isfinite(y_m)) return kNaN;
   const auto sx = locate_x(x_m);
@@ -122,6 +128,22 @@ std::array<double, 2> GriddedField::gradient(double x_m, double y_m) const {
 bool GriddedField::covers(double x_m, double y_m) const {
   const auto& g = geometry_;
   return x_m >= g.x_left && x_m <= g.x_right() && y_m >= g.y_bottom() && y_m <= g.y_top;
+}
+
+std::size_t GriddedField::cell_holding(double x_m, double y_m) const {
+  if (!covers(x_m, y_m)) return kNoCell;  // also false for NaN
+  const auto& g = geometry_;
+  const auto index = [](double offset, double size, std::size_t count) {
+    const double last = static_cast<double>(count) - 1.0;
+    return static_cast<std::size_t>(std::min(last, std::max(0.0, std::floor(offset / size))));
+  };
+  return index(g.y_top - y_m, g.cell_height, g.rows) * g.columns +
+         index(x_m - g.x_left, g.cell_width, g.columns);
+}
+
+double GriddedField::cell_value(double x_m, double y_m) const {
+  const std::size_t cell = cell_holding(x_m, y_m);
+  return cell == kNoCell ? kNaN : values_[cell];
 }
 
 GriddedField::NodataReport GriddedField::nodata_in(double x_min, double x_max, double y_min,

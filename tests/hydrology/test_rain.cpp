@@ -20,6 +20,12 @@ namespace {
 
 constexpr double kMmH = hydrology::kMetresPerSecondPerMmPerHour;
 
+std::unique_ptr<hydrology::RainLoss> initial_continuing(double initial_m, double continuing_m_s) {
+  return std::make_unique<hydrology::InitialContinuingLoss>(
+      hydrology::CellParameter{initial_m, nullptr, "initial loss"},
+      hydrology::CellParameter{continuing_m_s, nullptr, "continuing loss"});
+}
+
 using Stepper = testing::EffectStepper;
 
 // A 10 m x 4 m domain in cells of 1 m.
@@ -127,9 +133,7 @@ TEST_CASE("the rain gathered by a dry cell joins the water that reaches it", "[r
 
 TEST_CASE("rain losses: the initial loss first, then the continuing loss of each step", "[rain]") {
   auto s = ten_by_four();
-  s.losses.initial_m = 2e-3;
-  s.losses.continuing_m_s = 10.0 * kMmH;
-  Rain rain(s, Hydrograph({{0.0, 40.0 * kMmH}}));
+  Rain rain(s, Hydrograph({{0.0, 40.0 * kMmH}}), initial_continuing(2e-3, 10.0 * kMmH));
   Stepper st;
   st.particles.add_fluid(5.0, 2.0, 0.0, 0.0, 100.0, 2.5, 40.0, 0.0);  // covers every cell
   const double hour = 3600.0;
@@ -144,9 +148,7 @@ TEST_CASE("rain losses: the initial loss first, then the continuing loss of each
   check_books(rain, st.ledger);
 
   // Rain lighter than the continuing loss never reaches the ground's water.
-  auto lossy = ten_by_four();
-  lossy.losses.continuing_m_s = 10.0 * kMmH;
-  Rain soaked(lossy, Hydrograph({{0.0, 5.0 * kMmH}}));
+  Rain soaked(ten_by_four(), Hydrograph({{0.0, 5.0 * kMmH}}), initial_continuing(0.0, 10.0 * kMmH));
   Stepper dry;
   dry.step(soaked, 0.0, hour);
   CHECK(dry.ledger.rain_m3 == 0.0);
@@ -169,13 +171,12 @@ TEST_CASE("a rain series is integrated exactly over each step", "[rain]") {
 
 TEST_CASE("rain's state carries what the cells have gathered and have still to lose", "[rain]") {
   auto s = ten_by_four();
-  s.losses.initial_m = 1e-3;
-  Rain rain(s, Hydrograph({{0.0, 3.6 * kMmH}}));
+  Rain rain(s, Hydrograph({{0.0, 3.6 * kMmH}}), initial_continuing(1e-3, 0.0));
   Stepper st;
   st.step(rain, 0.0, 1500.0);  // 1.5 mm: 1 lost, 0.5 pending
   swe::StateWriter out;
   rain.save_state(out);
-  Rain restored(s, Hydrograph({{0.0, 3.6 * kMmH}}));
+  Rain restored(s, Hydrograph({{0.0, 3.6 * kMmH}}), initial_continuing(1e-3, 0.0));
   swe::StateReader in(out.bytes(), "a test record");
   restored.restore_state(in);
   CHECK(restored.pending_volume() == rain.pending_volume());
@@ -202,9 +203,7 @@ TEST_CASE("rain refuses settings that make no cells or no sense", "[rain]") {
   bad = ten_by_four();
   bad.creation_depth_m = -1.0;
   CHECK_THROWS_AS(Rain(bad, rate), std::invalid_argument);
-  bad = ten_by_four();
-  bad.losses.continuing_m_s = -1.0;
-  CHECK_THROWS_AS(Rain(bad, rate), std::invalid_argument);
+  CHECK_THROWS_AS(Rain(ten_by_four(), rate, initial_continuing(0.0, -1.0)), std::invalid_argument);
   bad = ten_by_four();
   bad.polygon = {{20.0, 20.0}, {30.0, 20.0}, {30.0, 30.0}};  // outside the domain
   CHECK_THROWS_AS(Rain(bad, rate), std::invalid_argument);

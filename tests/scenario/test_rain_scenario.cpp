@@ -54,8 +54,9 @@ TEST_CASE("a scene with rain and no water reads the rain and its defaults", "[sc
   CHECK(rate == std::vector<std::array<double, 2>>{{0.0, 25.0}});
   CHECK(rain.spacing_m == 0.5);
   CHECK(rain.creation_depth_m == swemps::hydrology::RainSettings::kDefaultCreationDepthM);
-  CHECK(rain.initial_loss_mm == 0.0);
-  CHECK(rain.continuing_loss_mm_h == 0.0);
+  CHECK(std::get<double>(rain.initial_loss_mm) == 0.0);
+  CHECK(std::get<double>(rain.continuing_loss_mm_h) == 0.0);
+  CHECK_FALSE(rain.green_ampt);
   CHECK(rain.polygon.empty());
   // The defaults are written into the scene as run.
   CHECK_THAT(s.as_read_json, Contains("\"creation_depth\""));
@@ -71,8 +72,8 @@ TEST_CASE("rain as an array, each with its series, polygon and losses", "[scenar
   REQUIRE(s.rain.size() == 2);
   CHECK(s.rain[0].key_path == "/rain/0");
   CHECK(s.rain[0].polygon.size() == 4);
-  CHECK(s.rain[0].initial_loss_mm == 10.0);
-  CHECK(s.rain[0].continuing_loss_mm_h == 2.5);
+  CHECK(std::get<double>(s.rain[0].initial_loss_mm) == 10.0);
+  CHECK(std::get<double>(s.rain[0].continuing_loss_mm_h) == 2.5);
   CHECK(s.rain[0].creation_depth_m == 0.002);
   auto built = swemps::scenario::build(s);
   std::size_t rains = 0;
@@ -120,7 +121,9 @@ TEST_CASE("a rain series from a CSV file in mm/h", "[scenario][rain]") {
     if (!rain) rain = dynamic_cast<const swemps::hydrology::Rain*>(effect.get());
   }
   REQUIRE(rain != nullptr);
-  CHECK(rain->rate().discharge(600.0) ==
+  const auto* uniform = dynamic_cast<const swemps::hydrology::UniformRainRate*>(&rain->rate());
+  REQUIRE(uniform != nullptr);
+  CHECK(uniform->series().discharge(600.0) ==
         Approx(40.0 * swemps::hydrology::kMetresPerSecondPerMmPerHour));
 
   CHECK_THAT(

@@ -1,13 +1,13 @@
 #pragma once
 // Rain on the terrain: water that falls on the domain from above, at a rate that may vary in
-// time, over the whole domain or a polygon of it (docs/rain.md).
+// time and space, over the whole domain or a polygon of it (docs/rain.md).
 //
 // The rain falls on a lattice of cells over the domain, about one particle spacing l on a
 // side (the domain's width and height divided into whole numbers of cells, so that the cells
 // tile the domain exactly; a polygon keeps the cells whose centres lie inside it). Each step
 // [t, t + dt], after the particles have moved:
-//  1. every cell receives the depth of rain the rate series gives over the step, integrated
-//     exactly (linear between the series' points); the losses take their part first (below);
+//  1. every cell receives the depth of rain its rate gives over the step, integrated exactly
+//     (RainRate); the losses take their part first (below);
 //  2. a cell is wet when it lies under a particle: within sqrt(A_i) of particle i, A_i its
 //     area, or holding its centre. sqrt(A_i) reaches the corners of a square lattice's cells
 //     (at 0.71 of it) with room to spare, so water in which particles have moved apart a
@@ -24,9 +24,10 @@
 // Every volume that reaches a particle is booked in VolumeLedger::rain_m3, so that the
 // fallen rain = the rain booked + the losses + the pending water, to round-off.
 //
-// Losses (the initial-and-continuing loss model, applied to the rain as it falls): each cell
-// first keeps initial_loss_m of its rain, then loses up to continuing_loss_m_s x dt of each
-// step's. What is lost never becomes water in the domain; it is counted in volume_lost().
+// Losses (hydrology/rain_losses.hpp) take their part of each cell's rain as it falls, before
+// step 2; what they take never becomes water in the domain and is counted in volume_lost().
+// Where and how hard the rain falls is a RainRate (hydrology/rain_rate.hpp): one series for
+// every cell, or maps of the rate.
 //
 // The caller gives cells that lie on the ground of the domain: a polygon leaves out the parts
 // walls close off, and the rain does not look for walls, except that it falls on no
@@ -42,6 +43,8 @@
 
 #include "swemps/boundaries/domain_outflow.hpp"
 #include "swemps/boundaries/hydrograph.hpp"
+#include "swemps/hydrology/rain_losses.hpp"
+#include "swemps/hydrology/rain_rate.hpp"
 #include "swemps/swe/bed.hpp"
 #include "swemps/swe/effect.hpp"
 #include "swemps/terrain/footprints.hpp"
@@ -50,11 +53,6 @@ namespace swemps::hydrology {
 
 // mm/h in m/s: the unit rain rates are given in, and the one the solver works in.
 constexpr double kMetresPerSecondPerMmPerHour = 1e-3 / 3600.0;
-
-struct RainLosses {
-  double initial_m = 0.0;       // the first rain each cell keeps (m of water)
-  double continuing_m_s = 0.0;  // then at most this rate of it (m/s)
-};
 
 struct RainSettings {
   std::string name = "rain";  // for reports
@@ -69,7 +67,6 @@ struct RainSettings {
   std::shared_ptr<const terrain::Footprints> roofs;
   // The depth a dry cell gathers before its water becomes a particle (m).
   double creation_depth_m = kDefaultCreationDepthM;
-  RainLosses losses;
   std::shared_ptr<const swe::BedSource> bed;  // z_b of new particles; null: z_b = 0
   // One millimetre: three decades above splitting's film floor, so a new particle is split
   // like any other water, and a tenth of the wet depth maps count from, so that rain shows on
@@ -79,11 +76,16 @@ struct RainSettings {
 
 class Rain final : public swe::Effect {
  public:
-  // `rate_m_s`: the rain's rate over time (m/s; points of time s and rate). Throws
-  // std::invalid_argument for a box or spacing that is not positive and finite, a polygon of
-  // fewer than 3 vertices or holding no cell centre, a creation depth that is not positive,
-  // losses that are negative or not finite, or an empty name.
-  Rain(RainSettings settings, boundaries::Hydrograph rate_m_s);
+  // `rate`: where and how hard the rain falls; `losses`: what the ground takes (null: none).
+  // Both are bound to the rain's cells here. Throws std::invalid_argument for a box or
+  // spacing that is not positive and finite, a polygon of fewer than 3 vertices or holding no
+  // cell centre, a creation depth that is not positive, an empty name, or a rate or loss that
+  // cannot be had at a cell (off its map, nodata, negative).
+  Rain(RainSettings settings, std::unique_ptr<RainRate> rate,
+       std::unique_ptr<RainLoss> losses = nullptr);
+  // The same rain at one rate over every cell, following `rate_m_s` (m/s) in time.
+  Rain(RainSettings settings, boundaries::Hydrograph rate_m_s,
+       std::unique_ptr<RainLoss> losses = nullptr);
 
   std::string_view name() const override { return settings_.name; }
   swe::Stage stage() const override { return swe::Stage::topology; }
@@ -100,7 +102,9 @@ class Rain final : public swe::Effect {
   double cell_area_m2() const { return cell_dx_ * cell_dy_; }
   double rain_area_m2() const { return cell_area_m2() * static_cast<double>(cells_.size()); }
   std::array<double, 2> cell_centre(std::size_t k) const;
-  const boundaries::Hydrograph& rate() const { return rate_; }
+  const RainRate& rate() const { return *rate_; }
+  // The volume of rain (m^3) that falls on the cells over [t0, t1], before losses.
+  double volume_due(double t0_s, double t1_s) const;
 
   double volume_fallen() const { return fallen_m3_; }  // m^3, all the rain so far
   double volume_lost() const { return lost_m3_; }      // m^3, taken by the losses
@@ -116,16 +120,16 @@ class Rain final : public swe::Effect {
   std::int64_t cell_at(double x, double y) const;
 
   RainSettings settings_;
-  boundaries::Hydrograph rate_;
-  double peak_rate_m_s_ = 0.0;  // the series' largest rate, for the step limit
+  std::unique_ptr<RainRate> rate_;
+  std::unique_ptr<RainLoss> losses_;
   double cell_dx_ = 0.0, cell_dy_ = 0.0;
   std::size_t nx_ = 0, ny_ = 0;
   // Rain cells as lattice indices j * nx_ + i, ascending; the lattice's cells map back to them
   // (-1: no rain falls there).
   std::vector<std::uint32_t> cells_;
   std::vector<std::int32_t> rain_cell_of_;
-  // Per rain cell: the depth gathered while dry (m) and the initial loss still to take (m).
-  std::vector<double> pending_m_, initial_left_m_;
+  // Per rain cell: the depth gathered while dry (m); scratch for a step's rain on it (m).
+  std::vector<double> pending_m_, step_rain_m_;
   // Scratch for a step: per rain cell the particles over it and its share for each (m^3);
   // per particle the cells it covers, all in one array, particle i's from covered_start_[i].
   std::vector<std::uint32_t> over_count_;

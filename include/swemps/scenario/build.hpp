@@ -3,6 +3,7 @@
 // settled (the terrain), the particles, the walls, the effects the scene asks for, the output
 // grid. Files are read here, through io; the solver gets plain objects.
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,6 +53,17 @@ struct Terrain {
     std::size_t footprints = 0, not_polygons = 0, degenerate = 0;
   };
   std::vector<BuildingsRead> buildings;
+  // Per rain (scene.rain), the maps it names, in the scene's CRS and the scene's units (mm/h,
+  // mm, ...): its rate, one map or a series of them with the start of each in seconds of the
+  // run, the last until rate_end_s; and its loss parameters by their keys in the rain
+  // ("initial_loss_mm", "green_ampt/suction_mm"). No rate maps: the rain's rate is a series.
+  struct RainMaps {
+    std::vector<double> rate_starts_s;
+    std::vector<std::shared_ptr<const terrain::GriddedField>> rate_mm_h;
+    double rate_end_s = 0.0;
+    std::map<std::string, std::shared_ptr<const terrain::GriddedField>> parameters;
+  };
+  std::vector<RainMaps> rain;
 };
 
 // Reads the rasters the scene names, warped to the scene's CRS, and settles the domain:

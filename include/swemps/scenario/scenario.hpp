@@ -168,18 +168,38 @@ struct Inflow {
   std::optional<std::array<double, 2>> direction;
 };
 
+// A number, or a raster of numbers, for a quantity that may vary over the domain.
+using ValueOrRaster = std::variant<double, RasterSpec>;
+
+// Green-Ampt infiltration's soil (hydrology/rain_losses.hpp), each value in the scene's units.
+struct GreenAmptSpec {
+  ValueOrRaster conductivity_mm_h = 0.0;  // K, the saturated hydraulic conductivity
+  ValueOrRaster suction_mm = 0.0;         // psi, the suction head at the wetting front
+  ValueOrRaster moisture_deficit = 0.0;   // dtheta, 0..1
+};
+
 // Rain over the domain or a polygon of it (hydrology/rain.hpp, docs/rain.md).
 struct RainSpec {
   std::string name;
   std::string key_path;  // where the file gives it ("/rain" or "/rain/2"), for messages
-  // (time s, rate mm/h) points, or a CSV file of them (absolute path); one point is a
-  // constant rate.
-  std::variant<std::vector<std::array<double, 2>>, std::filesystem::path> rate_mm_h;
+  // A map of the rate (mm/h), constant in time; and a netCDF series of such maps over
+  // (time, y, x), each holding until the next (hydrology::MappedRainRate).
+  struct RateRaster {
+    RasterSpec raster;
+  };
+  struct RateNetcdf {
+    RasterSpec raster;
+  };
+  // (time s, rate mm/h) points, or a CSV file of them (absolute path), one rate for the whole
+  // rain (one point is a constant rate); or maps of the rate.
+  std::variant<std::vector<std::array<double, 2>>, std::filesystem::path, RateRaster, RateNetcdf>
+      rate_mm_h;
   std::vector<Point> polygon;  // empty: the whole domain
   double spacing_m = 0.0;      // of the rain's cells and the particles it creates
   double creation_depth_m = hydrology::RainSettings::kDefaultCreationDepthM;
-  double initial_loss_mm = 0.0;
-  double continuing_loss_mm_h = 0.0;
+  ValueOrRaster initial_loss_mm = 0.0;
+  ValueOrRaster continuing_loss_mm_h = 0.0;  // unused with Green-Ampt
+  std::optional<GreenAmptSpec> green_ampt;   // instead of the continuing loss
 };
 
 // A polyline water leaves the domain through.

@@ -52,6 +52,9 @@ class GriddedField {
     return values_[row * geometry_.columns + col];
   }
 
+  // The same grid with every value multiplied by `factor` (a change of units).
+  GriddedField scaled(double factor) const;
+
   // Bilinear interpolation between cell centres. Between the outermost centres and the outer
   // edges (and beyond) the value is held constant across the boundary (clamped), so any point
   // gets a value. At a cell centre the result is that cell's value exactly. NaN if a cell with
@@ -67,6 +70,17 @@ class GriddedField {
 
   // True if (x, y) lies on the raster: within its outer edges (inclusive).
   bool covers(double x_m, double y_m) const;
+
+  // The cell holding (x, y), as an index into values() (row * columns + col): a point on an
+  // edge between cells belongs to the cell east or south of it, one on the raster's own east
+  // or south edge to the cell inside. kNoCell off the raster (covers() false) or for a
+  // non-finite point.
+  static constexpr std::size_t kNoCell = static_cast<std::size_t>(-1);
+  std::size_t cell_holding(double x_m, double y_m) const;
+  // The value of that cell, read as flat across it: what a map of rates or soil properties
+  // means, and what keeps a rain map's volume when finer cells sample it. NaN for kNoCell or
+  // a nodata cell.
+  double cell_value(double x_m, double y_m) const;
 
   // Nodata cells that sample() or gradient() would use somewhere in the rectangle
   // [x_min, x_max] x [y_min, y_max], with the first of them (in row-major order), so that an
