@@ -75,7 +75,9 @@ std::optional<CalendarTime> parse_calendar_time(std::string_view text, bool leni
   }
   std::string_view rest = text.substr(std::min(at, text.size()));
   if (lenient) rest = trimmed(rest);
-  if (rest.empty() || rest == "Z" || (lenient && rest == "UTC")) return t;
+  if (rest.empty()) return t;
+  t.zoned = true;
+  if (rest == "Z" || (lenient && rest == "UTC")) return t;
   const int zh = digits_at(rest, 1, 2), zm = digits_at(rest, 4, 2);
   if (rest.size() != 6 || (rest[0] != '+' && rest[0] != '-') || rest[3] != ':' || zh < 0 ||
       zh > 14 || zm < 0 || zm > 59) {

@@ -223,8 +223,7 @@ std::string cf_time_units(std::string_view text) {
                 t->month, t->day, t->hour, t->minute, static_cast<int>(t->second));
   std::string units = buffer;
   // A zone given in the text is kept, as an offset ("Z" as +00:00).
-  const std::size_t zone = text.find_first_of("Z+-", 10);
-  if (zone != std::string_view::npos) {
+  if (t->zoned) {
     const int m = std::abs(t->offset_minutes);
     std::snprintf(buffer, sizeof buffer, " %c%02d:%02d", t->offset_minutes < 0 ? '-' : '+', m / 60,
                   m % 60);

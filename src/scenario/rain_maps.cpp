@@ -3,27 +3,20 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "json_reading.hpp"
 #include "swemps/io/cf_time.hpp"
 
 namespace swemps::scenario {
 
 namespace {
 
+using json_reading::fmt;
 using Field = terrain::GriddedField;
-using FieldPtr = std::shared_ptr<const Field>;
 constexpr auto kNearest = io::RasterRequest::Resampling::nearest;
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
 
 // How a series' values become mm/h: a factor for rates, or depths per interval (mm).
 struct ValueUnits {

@@ -17,7 +17,8 @@ TEST_CASE("ISO dates in seconds since 1970, with zones", "[cf_time]") {
   CHECK_FALSE(parse_calendar_time("2024-06-01 12:00:00.5"));
   CHECK(parse_calendar_time("2024-06-01 12:00:00.5", true)->second == 0.5);
   CHECK(parse_calendar_time("2024-06-01 12:00:00 +02:00", true)->offset_minutes == 120);
-  CHECK(parse_calendar_time("2024-06-01 12:00:00 UTC", true));
+  CHECK(parse_calendar_time("2024-06-01 12:00:00 UTC", true)->zoned);
+  CHECK_FALSE(parse_calendar_time("2024-06-01T12:00")->zoned);
   // Dates that do not exist, and other text.
   CHECK_FALSE(parse_calendar_time("2023-02-29"));
   CHECK(parse_calendar_time("2024-02-29"));

@@ -12,6 +12,7 @@ struct CalendarTime {
   int year = 1970, month = 1, day = 1, hour = 0, minute = 0;
   double second = 0.0;
   int offset_minutes = 0;  // east of UTC ("+02:00": 120)
+  bool zoned = false;      // whether the text gave a zone ("Z", "UTC" or an offset)
 };
 
 // An ISO 8601 date and time: "2024-06-01", "2024-06-01T12:00", "2024-06-01T12:00:00", a space
