@@ -69,11 +69,21 @@ void Simulation::add_ghosts_and_neighbors() {
   ghost_reach_ = reach;
   {
     ScopedTimer timer(phase_times_.walls);
-    walls_.add_ghosts(particles_, reach);
+    if (!walls_.empty()) {
+      set_wall_reach(reach);
+      walls_.add_ghosts(particles_, wall_reach_, own_search_radius_);
+    }
     particles_.close_mirror_images();
     for (const std::size_t k : ghost_effects_)
       effects_[k]->add_ghosts(particles_, reach, settings_, time_s_);
   }
+  search_neighbors(reach);
+  if (walls_.empty()) return;
+  ScopedTimer timer(phase_times_.walls);
+  walls_.hide_pairs_across_walls(particles_, neighbor_list_);
+}
+
+void Simulation::search_neighbors(double reach) {
   ScopedTimer timer(phase_times_.neighbors);
   ++search_counts_.searches;
   const auto coords = positions(particles_, particles_.size());
@@ -91,6 +101,18 @@ void Simulation::add_ghosts_and_neighbors() {
   // a radius). Those above it are found by the builder's own way for wide points.
   cells_.build(coords, typical_search_radius(), kCellSubdivisions);
   build_neighbor_list<2>(cells_, coords, search_radii_, particles_.fluid_count(), neighbor_list_);
+}
+
+// Why: a ghost beyond a second wall is placed only within its particle's own search radius
+// (GhostWalls::add_ghosts); every wall and ghost within the widest search radius of the scene
+// otherwise, as a neighbour's kernel may reach that far.
+void Simulation::set_wall_reach(double largest) {
+  const std::size_t n = particles_.fluid_count();
+  wall_reach_.assign(n, largest);
+  own_search_radius_.resize(n);
+  parallel_for(n, [&](std::size_t i) {
+    own_search_radius_[i] = scheme_->search_radius(particles_.smoothing_length[i]);
+  });
 }
 
 double Simulation::typical_search_radius() const {
@@ -194,11 +216,16 @@ bool Simulation::repair_outgrown_rows() {
       particles_.smoothing_length[g] = particles_.smoothing_length[from];
       repaired_.push_back(static_cast<std::uint32_t>(g));
     }
+    std::vector<std::uint32_t> rows;
     {
       ScopedTimer timer(phase_times_.neighbors);
       ++search_counts_.repairs;
-      neighbors::repair_rows<2>(cells_, positions(particles_, particles_.size()), search_radii_, n,
-                                repaired_, neighbor_list_);
+      rows = neighbors::repair_rows<2>(cells_, positions(particles_, particles_.size()),
+                                       search_radii_, n, repaired_, neighbor_list_);
+    }
+    if (!walls_.empty()) {  // the rewritten rows, as a new search would give them
+      ScopedTimer timer(phase_times_.walls);
+      walls_.hide_pairs_across_walls(particles_, neighbor_list_, rows);
     }
     ScopedTimer timer(phase_times_.depth);
     if (scheme_->sum_depth_of(particles_, neighbor_list_, grown)) return true;

@@ -1,6 +1,7 @@
 // Tests of the wall index: it finds every wall a brute-force test finds, for points, boxes
 // and paths, over walls short and long, and ghosts come out as they would without it.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
@@ -9,6 +10,8 @@
 
 #include "swemps/boundaries/ghost_walls.hpp"
 #include "swemps/boundaries/wall_index.hpp"
+#include "swemps/neighbors/cell_list.hpp"
+#include "swemps/neighbors/neighbor_list.hpp"
 
 using namespace swemps;
 using boundaries::GhostWalls;
@@ -112,17 +115,7 @@ TEST_CASE("ghosts from the index are those a test of every wall gives, in order"
   const double reach = 1.5;
   indexed.add_ghosts(p, reach);
   // By brute force: each particle's walls within reach (half-open along the wall), in index
-  // order, one ghost mirrored across each, then one per pair that is not parallel; a ghost
-  // whose path from its particle meets another wall (not half way) is left out.
-  const auto behind_another = [&](std::size_t i, double gx, double gy, std::size_t a,
-                                  std::size_t b) {
-    for (std::size_t k = 0; k < walls.size(); ++k) {
-      if (k == a || k == b) continue;
-      const double t = meets_at(walls[k], {p.x[i], p.y[i]}, {gx, gy});
-      if (t >= 0.0 && std::abs(t - 0.5) > 1e-9) return true;
-    }
-    return false;
-  };
+  // order, one ghost mirrored across each, then one per pair that is not parallel.
   std::size_t expected = 0, checked = 0;
   std::size_t g = p.fluid_count();
   for (std::size_t i = 0; i < p.fluid_count(); ++i) {
@@ -146,8 +139,7 @@ TEST_CASE("ghosts from the index are those a test of every wall gives, in order"
     };
     std::vector<std::array<double, 2>> ghosts;
     for (const std::size_t k : near) {
-      const auto m = mirror(k, p.x[i], p.y[i]);
-      if (!behind_another(i, m[0], m[1], k, k)) ghosts.push_back(m);
+      ghosts.push_back(mirror(k, p.x[i], p.y[i]));
     }
     for (std::size_t a = 0; a < near.size(); ++a) {
       for (std::size_t b = a + 1; b < near.size(); ++b) {
@@ -160,7 +152,7 @@ TEST_CASE("ghosts from the index are those a test of every wall gives, in order"
           continue;
         const auto once = mirror(near[a], p.x[i], p.y[i]);
         const auto twice = mirror(near[b], once[0], once[1]);
-        if (!behind_another(i, twice[0], twice[1], near[a], near[b])) ghosts.push_back(twice);
+        ghosts.push_back(twice);
       }
     }
     expected += ghosts.size();
@@ -176,6 +168,50 @@ TEST_CASE("ghosts from the index are those a test of every wall gives, in order"
   }
   CHECK(p.ghost_count() == expected);
   CHECK(checked > 100);
+}
+
+TEST_CASE("the pairs hidden across walls are those a test of every wall hides", "[boundaries]") {
+  std::mt19937 random(5);
+  const auto walls = town_walls(random);
+  GhostWalls indexed(walls);
+  std::uniform_real_distribution<double> at(0.0, 200.0);
+  particles::SweParticles p;
+  for (int k = 0; k < 4000; ++k) p.add_fluid(at(random), at(random), 0.0, 0.0, 0.01, 0.3, 1.0, 0.0);
+  const double reach = 4.0;
+  indexed.add_ghosts(p, reach);
+  const neighbors::Coordinates<2> coords{std::span<const double>(p.x),
+                                         std::span<const double>(p.y)};
+  neighbors::CellList<2> cells;
+  cells.build(coords, reach);
+  neighbors::NeighborList rows;
+  neighbors::build_neighbor_list<2>(cells, coords, p.fluid_count(), reach, rows);
+  const neighbors::NeighborList searched = rows;
+  const std::size_t hidden = indexed.hide_pairs_across_walls(p, rows);
+  // By brute force: j stays in row i when it is one of i's ghosts, or when the path from the
+  // lower-numbered of i and j's particle to the higher meets no wall.
+  std::size_t expected_hidden = 0, ghosts_hidden = 0;
+  for (std::uint32_t i = 0; i < p.fluid_count(); ++i) {
+    std::vector<std::uint32_t> expected;
+    for (const std::uint32_t j : searched.row(i)) {
+      const std::uint32_t k = p.source[j];
+      const std::array<double, 2> xi{p.x[i], p.y[i]}, xk{p.x[k], p.y[k]};
+      const bool seen = k == i || std::none_of(walls.begin(), walls.end(), [&](const auto& w) {
+                          return i < k ? meets_at(w, xi, xk) >= 0.0 : meets_at(w, xk, xi) >= 0.0;
+                        });
+      if (seen) {
+        expected.push_back(j);
+      } else {
+        ++expected_hidden;
+        if (j >= p.fluid_count()) ++ghosts_hidden;
+      }
+    }
+    const auto row = rows.row(i);
+    INFO("row " << i);
+    CHECK(std::vector<std::uint32_t>(row.begin(), row.end()) == expected);
+  }
+  CHECK(hidden == expected_hidden);
+  CHECK(ghosts_hidden > 100);  // the test sees ghosts hidden as well as particles
+  CHECK(expected_hidden > ghosts_hidden);
 }
 
 TEST_CASE("a wall index refuses a wall with a non-finite end", "[boundaries]") {

@@ -180,8 +180,13 @@ class Simulation {
  private:
   // refresh() without the resolution stage; `sort`: sort the particles by cell first.
   // Wall ghosts and the boundary effects' ghosts for the current radii, then the neighbour
-  // list over fluid and ghosts.
+  // list over fluid and ghosts, without the pairs that see each other through a wall.
   void add_ghosts_and_neighbors();
+  // The neighbour rows of every fluid particle (ghosts among the points), within `reach`.
+  void search_neighbors(double reach);
+  // Each fluid particle's reach for the walls' ghosts (wall_reach_: `largest`, the largest
+  // search radius of all) and its own search radius (own_search_radius_).
+  void set_wall_reach(double largest);
   // The largest search radius of the fluid particles (the scheme's, for their radii).
   double largest_search_radius() const;
   // The radius the neighbour cells are sized for (neighbors::typical_radius of search_radii_).
@@ -235,7 +240,8 @@ class Simulation {
   // and ghosts, and so the order of every sum, follow the searched radii: a restored state
   // searches with these again to continue bit for bit.
   std::vector<double> listed_smoothing_length_;
-  double ghost_reach_ = 0.0;             // the search radius the walls' ghosts were added for
+  double ghost_reach_ = 0.0;  // the largest search radius when the ghosts were added
+  std::vector<double> wall_reach_, own_search_radius_;
   std::vector<std::uint32_t> changed_;   // what the resolution stage changed (StepContext)
   std::vector<std::uint32_t> repaired_;  // repair_outgrown_rows()'s points
   neighbors::CellList<2> cells_;
