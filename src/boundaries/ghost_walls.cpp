@@ -57,16 +57,16 @@ GhostWalls::GhostWalls(std::vector<WallSegment> segments) : index_(std::move(seg
 }
 
 void GhostWalls::add_ghosts(particles::SweParticles& p, double reach) {
-  reach_.assign(p.fluid_count(), reach);
+  reach_ = reach;
   own_reach_.assign(p.fluid_count(), reach);
   place_ghosts(p);
 }
 
-void GhostWalls::add_ghosts(particles::SweParticles& p, std::span<const double> reach,
+void GhostWalls::add_ghosts(particles::SweParticles& p, double reach,
                             std::span<const double> own_reach) {
-  if (reach.size() != p.fluid_count() || own_reach.size() != p.fluid_count())
+  if (own_reach.size() != p.fluid_count())
     throw std::logic_error("add_ghosts: one reach a particle");
-  reach_.assign(reach.begin(), reach.end());
+  reach_ = reach;
   own_reach_.assign(own_reach.begin(), own_reach.end());
   place_ghosts(p);
 }
@@ -96,7 +96,7 @@ void GhostWalls::place_ghosts(particles::SweParticles& p) {
     std::vector<std::uint32_t> touching, near;  // segments within reach; those mirrored across
     for (std::size_t i = begin; i < end; ++i) {
       const Vec x{p.x[i], p.y[i]};
-      const double reach = reach_[i], reach2 = reach * reach;
+      const double reach = reach_, reach2 = reach * reach;
       // Whether to place the ghost at g of the particle at x, `depth` from the walls a and b
       // it is mirrored across (see own_reach in the header).
       const auto wanted = [&](const Vec& g, std::uint32_t a, std::uint32_t b, double depth) {
@@ -218,7 +218,7 @@ std::uint32_t GhostWalls::hide_in_row(const particles::SweParticles& p, neighbor
     const Line& line = lines_[near_wall_[walls_begin + w].second];
     side[w] = dot(sub(xi, line.origin), line.normal);
   }
-  const double reach2 = reach_[i] * reach_[i];
+  const double reach2 = reach_ * reach_;
   const auto wall_ghosts = static_cast<std::uint32_t>(mirrored_across_.size());
   std::uint32_t kept = begin;
   // A particle's ghosts follow one another in a row (they are numbered together): the first

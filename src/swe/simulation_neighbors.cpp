@@ -70,8 +70,8 @@ void Simulation::add_ghosts_and_neighbors() {
   {
     ScopedTimer timer(phase_times_.walls);
     if (!walls_.empty()) {
-      set_wall_reach(reach);
-      walls_.add_ghosts(particles_, wall_reach_, own_search_radius_);
+      set_own_search_radii();
+      walls_.add_ghosts(particles_, reach, own_search_radius_);
     }
     particles_.close_mirror_images();
     for (const std::size_t k : ghost_effects_)
@@ -104,11 +104,10 @@ void Simulation::search_neighbors(double reach) {
 }
 
 // Why: a ghost beyond a second wall is placed only within its particle's own search radius
-// (GhostWalls::add_ghosts); every wall and ghost within the widest search radius of the scene
-// otherwise, as a neighbour's kernel may reach that far.
-void Simulation::set_wall_reach(double largest) {
+// (GhostWalls::add_ghosts); every other wall and ghost within the widest search radius of the
+// scene, as a neighbour's kernel may reach that far.
+void Simulation::set_own_search_radii() {
   const std::size_t n = particles_.fluid_count();
-  wall_reach_.assign(n, largest);
   own_search_radius_.resize(n);
   parallel_for(n, [&](std::size_t i) {
     own_search_radius_[i] = scheme_->search_radius(particles_.smoothing_length[i]);

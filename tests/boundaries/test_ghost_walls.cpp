@@ -213,8 +213,8 @@ TEST_CASE("a ghost beyond a thin building is seen from its own side alone", "[bo
   // its wall, however far the others' reach.
   for (const double own : {2.0, 3.0}) {
     p.drop_ghosts();
-    const std::vector<double> reaches(p.fluid_count(), reach), owns(p.fluid_count(), own);
-    terrace.add_ghosts(p, reaches, owns);
+    const std::vector<double> owns(p.fluid_count(), own);
+    terrace.add_ghosts(p, reach, owns);
     const bool placed =
         std::any_of(p.y.begin() + 3, p.y.end(), [](double y) { return std::abs(y - 2.5) < 1e-9; });
     CHECK(placed == (own > 2.5));

@@ -40,21 +40,17 @@ class GhostWalls {
   // Appends the ghosts of every fluid particle within `reach` (m) of a wall and remembers
   // which particles are near which walls for keep_inside(). Requires no ghosts present.
   void add_ghosts(particles::SweParticles& p, double reach);
-  // As above, each fluid particle i with a reach of its own, reach[i]: at least the search
-  // radius of every particle that may list it or its ghosts as a neighbour. A ghost that
-  // stands beyond a second wall as well (behind a building thinner than twice the particle's
-  // distance from it) is placed only within own_reach[i] of its wall, the particle's own
-  // search radius: the wider kernels of a thin sheet nearby would otherwise fill whole
-  // blocks of houses with ghosts, each a point of the search.
-  void add_ghosts(particles::SweParticles& p, std::span<const double> reach,
-                  std::span<const double> own_reach);
+  // As above; a ghost that stands beyond a second wall as well (behind a building thinner
+  // than twice the particle's distance from it) is placed only within own_reach[i] of its
+  // wall, particle i's own search radius: the wider kernels of a thin sheet nearby would
+  // otherwise fill whole blocks of houses with ghosts, each a point of the search.
+  void add_ghosts(particles::SweParticles& p, double reach, std::span<const double> own_reach);
 
   // Removes from the fluid particles' rows of `nl` every pair that sees each other through a
   // wall: j is hidden from row i when the straight path from particle i to j's particle (its
   // source, for a ghost) crosses a wall. A particle always sees its own ghosts. The test is
   // symmetric, so symmetric rows stay symmetric. Requires the ghosts and walls of the last
-  // add_ghosts(), at the same positions, and no row wider than its particle's reach there
-  // (each point of row i nearer i than reach[i]). Returns the pairs
+  // add_ghosts(), at the same positions, and rows no wider than its reach. Returns the pairs
   // hidden (each pair of fluid particles counted once per row).
   std::size_t hide_pairs_across_walls(const particles::SweParticles& p,
                                       neighbors::NeighborList& nl);
@@ -101,7 +97,8 @@ class GhostWalls {
   // those it is mirrored across: the ghost would stand beyond them.
   bool behind_another_wall(std::array<double, 2> x, std::array<double, 2> g, std::uint32_t a,
                            std::uint32_t b) const;
-  std::vector<double> reach_, own_reach_;  // each fluid particle's, in the last add_ghosts()
+  double reach_ = 0.0;             // that of the last add_ghosts()
+  std::vector<double> own_reach_;  // each fluid particle's, in the last add_ghosts()
   // The walls each ghost of the last add_ghosts() was mirrored across, in ghost order.
   std::vector<std::array<std::uint32_t, 2>> mirrored_across_;
   std::vector<std::uint32_t> kept_;  // per row: how many points hide_pairs_across_walls keeps

@@ -184,9 +184,8 @@ class Simulation {
   void add_ghosts_and_neighbors();
   // The neighbour rows of every fluid particle (ghosts among the points), within `reach`.
   void search_neighbors(double reach);
-  // Each fluid particle's reach for the walls' ghosts (wall_reach_: `largest`, the largest
-  // search radius of all) and its own search radius (own_search_radius_).
-  void set_wall_reach(double largest);
+  // Each fluid particle's own search radius (own_search_radius_), for the walls' ghosts.
+  void set_own_search_radii();
   // The largest search radius of the fluid particles (the scheme's, for their radii).
   double largest_search_radius() const;
   // The radius the neighbour cells are sized for (neighbors::typical_radius of search_radii_).
@@ -241,7 +240,7 @@ class Simulation {
   // searches with these again to continue bit for bit.
   std::vector<double> listed_smoothing_length_;
   double ghost_reach_ = 0.0;  // the largest search radius when the ghosts were added
-  std::vector<double> wall_reach_, own_search_radius_;
+  std::vector<double> own_search_radius_;
   std::vector<std::uint32_t> changed_;   // what the resolution stage changed (StepContext)
   std::vector<std::uint32_t> repaired_;  // repair_outgrown_rows()'s points
   neighbors::CellList<2> cells_;
