@@ -74,6 +74,7 @@ void GhostWalls::add_ghosts(particles::SweParticles& p, double reach,
 void GhostWalls::place_ghosts(particles::SweParticles& p) {
   if (p.ghost_count() != 0) throw std::logic_error("add_ghosts: ghosts already present");
   near_wall_.clear();
+  near_wall_distance2_.clear();
   const std::size_t n = p.fluid_count();
   // Half-open [0, length) along the segment: where two collinear segments join, one ghost,
   // not two.
@@ -89,6 +90,7 @@ void GhostWalls::place_ghosts(particles::SweParticles& p) {
   chunks_.resize(reduction_chunks);
   for (auto& chunk : chunks_) {  // a short list runs as one chunk: the others hold old work
     chunk.near_wall.clear();
+    chunk.near_wall_distance2.clear();
     chunk.ghosts.clear();
   }
   parallel_chunks(n, [&](std::size_t c, std::size_t begin, std::size_t end) {
@@ -120,6 +122,7 @@ void GhostWalls::place_ghosts(particles::SweParticles& p) {
       near.clear();
       for (std::uint32_t s : touching) {
         out.near_wall.emplace_back(id, s);
+        out.near_wall_distance2.push_back(distance2_to(lines_[s], x));
         if (within_reach(lines_[s], x, reach)) near.push_back(s);
       }
       for (std::uint32_t s : near) {
@@ -162,6 +165,8 @@ void GhostWalls::place_ghosts(particles::SweParticles& p) {
   mirrored_across_.clear();
   for (const auto& chunk : chunks_) {
     near_wall_.insert(near_wall_.end(), chunk.near_wall.begin(), chunk.near_wall.end());
+    near_wall_distance2_.insert(near_wall_distance2_.end(), chunk.near_wall_distance2.begin(),
+                                chunk.near_wall_distance2.end());
     for (const PlacedGhost& g : chunk.ghosts) {
       p.add_ghost(g.particle, g.x[0], g.x[1], g.velocity[0], g.velocity[1]);
       mirrored_across_.push_back(g.mirrored_across);
@@ -237,8 +242,12 @@ std::uint32_t GhostWalls::hide_in_row(const particles::SweParticles& p, neighbor
       const Vec xk{p.x[k], p.y[k]};
       const Vec from = i < k ? xi : xk, to = i < k ? xk : xi;
       const Vec d = sub(xk, xi);
-      if (j < fluid || dot(d, d) < reach2) {
+      const double distance2 = dot(d, d);
+      if (j < fluid || distance2 < reach2) {
         for (std::uint32_t w = walls_begin; w < walls_end && !hidden; ++w) {
+          // A wall the path crosses is no farther from i than k is. In a town most of i's
+          // walls within the widest kernel of the scene lie beyond its neighbours.
+          if (near_wall_distance2_[w] > distance2) continue;
           const std::uint32_t s = near_wall_[w].second;
           if (w - walls_begin < sides) {
             const Line& line = lines_[s];
@@ -326,65 +335,86 @@ bool GhostWalls::crosses_any(std::span<const WallSegment> walls, Vec p0, Vec p1)
 }
 
 std::size_t GhostWalls::keep_inside(particles::SweParticles& p, std::span<const double> old_x,
-                                    std::span<const double> old_y) const {
+                                    std::span<const double> old_y) {
   std::size_t reflected = 0;
-  // near_wall_ holds each particle's segments together (add_ghosts adds them particle by
-  // particle). The path is followed like a billiard ball: reflect off the first wall it meets,
-  // then follow the reflected rest of the path, which may meet another wall. Reflecting off
-  // each crossed wall in turn, in the order of the list, is not enough: a path past a corner
-  // that first crosses the second wall's line, once reflected, can end behind the first.
+  const std::size_t n = std::min({old_x.size(), old_y.size(), p.fluid_count()});
+  // A path shorter than the reach meets only walls within reach of its start: its particle's
+  // near-wall list (near_wall_ holds each particle's segments together). A longer one, which
+  // the time step (eq 13) makes rare, asks the index for every wall within its length.
+  const auto short_path = [&](std::size_t i) {
+    const double dx = p.x[i] - old_x[i], dy = p.y[i] - old_y[i];
+    return dx * dx + dy * dy < reach_ * reach_;
+  };
   for (std::size_t k = 0; k < near_wall_.size();) {
     const std::uint32_t i = near_wall_[k].first;
-    std::size_t group_end = k;
-    while (group_end < near_wall_.size() && near_wall_[group_end].first == i) ++group_end;
-    Vec start{old_x[i], old_y[i]};
-    Vec end{p.x[i], p.y[i]};
-    std::size_t last_wall = near_wall_.size();  // the wall the path now starts on, if any
-    bool inside = false;
-    for (int bounce = 0; bounce < kMaxReflections && !inside; ++bounce) {
-      double first = 2.0;
-      std::size_t hit = near_wall_.size();
-      for (std::size_t g = k; g < group_end; ++g) {
-        if (g == last_wall) continue;
-        const double t =
-            crossing_fraction(index_.segments()[near_wall_[g].second], start, end, kEndSlack);
-        if (t >= 0.0 && t < first) {
-          first = t;
-          hit = g;
-        }
-      }
-      if (hit == near_wall_.size()) {
-        inside = true;
-        break;
-      }
-      const Line& line = lines_[near_wall_[hit].second];
-      const double side = dot(sub(start, line.origin), line.normal);
-      const double d = dot(sub(end, line.origin), line.normal);
-      // Mirror the overshoot back to the starting side; a particle ending on the line is
-      // pushed off it by a hair so that it cannot sit on the wall.
-      const double sign = side >= 0.0 ? 1.0 : -1.0;
-      const double back = std::max(-d * sign, 1e-9 * line.length);  // behind the wall, >= 0
-      const Vec on_wall{start[0] + first * (end[0] - start[0]),
-                        start[1] + first * (end[1] - start[1])};
-      end = {end[0] + (sign * back - d) * line.normal[0],
-             end[1] + (sign * back - d) * line.normal[1]};
-      start = on_wall;
-      last_wall = hit;
-      const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
-      if (un * sign < 0.0) {  // moving into the wall: bounce
-        p.u[i] -= 2.0 * un * line.normal[0];
-        p.v[i] -= 2.0 * un * line.normal[1];
-      }
-    }
-    if (!inside) end = {old_x[i], old_y[i]};  // see kMaxReflections
-    if (end[0] != p.x[i] || end[1] != p.y[i]) {
-      p.x[i] = end[0];
-      p.y[i] = end[1];
+    walls_met_.clear();
+    for (; k < near_wall_.size() && near_wall_[k].first == i; ++k)
+      walls_met_.push_back(near_wall_[k].second);
+    if (i < n && short_path(i) && bounce_inside(p, i, {old_x[i], old_y[i]}, walls_met_))
       ++reflected;
-    }
-    k = group_end;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (short_path(i)) continue;
+    const double length = std::hypot(p.x[i] - old_x[i], p.y[i] - old_y[i]);
+    walls_met_.clear();
+    index_.for_each_candidate(old_x[i] - length, old_y[i] - length, old_x[i] + length,
+                              old_y[i] + length, [&](std::uint32_t s) { walls_met_.push_back(s); });
+    std::sort(walls_met_.begin(), walls_met_.end());
+    walls_met_.erase(std::unique(walls_met_.begin(), walls_met_.end()), walls_met_.end());
+    if (bounce_inside(p, i, {old_x[i], old_y[i]}, walls_met_)) ++reflected;
   }
   return reflected;
+}
+
+bool GhostWalls::bounce_inside(particles::SweParticles& p, std::size_t i, Vec start,
+                               std::span<const std::uint32_t> walls) const {
+  // The path is followed like a billiard ball: reflect off the first wall it meets, then
+  // follow the reflected rest of the path, which may meet another wall. Reflecting off each
+  // crossed wall in turn, in the order of the list, is not enough: a path past a corner that
+  // first crosses the second wall's line, once reflected, can end behind the first.
+  const Vec old = start;
+  Vec end{p.x[i], p.y[i]};
+  std::size_t last_wall = walls.size();  // the wall the path now starts on, if any
+  bool inside = false;
+  for (int bounce = 0; bounce < kMaxReflections && !inside; ++bounce) {
+    double first = 2.0;
+    std::size_t hit = walls.size();
+    for (std::size_t g = 0; g < walls.size(); ++g) {
+      if (g == last_wall) continue;
+      const double t = crossing_fraction(index_.segments()[walls[g]], start, end, kEndSlack);
+      if (t >= 0.0 && t < first) {
+        first = t;
+        hit = g;
+      }
+    }
+    if (hit == walls.size()) {
+      inside = true;
+      break;
+    }
+    const Line& line = lines_[walls[hit]];
+    const double side = dot(sub(start, line.origin), line.normal);
+    const double d = dot(sub(end, line.origin), line.normal);
+    // Mirror the overshoot back to the starting side; a particle ending on the line is pushed
+    // off it by a hair so that it cannot sit on the wall.
+    const double sign = side >= 0.0 ? 1.0 : -1.0;
+    const double back = std::max(-d * sign, 1e-9 * line.length);  // behind the wall, >= 0
+    const Vec on_wall{start[0] + first * (end[0] - start[0]),
+                      start[1] + first * (end[1] - start[1])};
+    end = {end[0] + (sign * back - d) * line.normal[0],
+           end[1] + (sign * back - d) * line.normal[1]};
+    start = on_wall;
+    last_wall = hit;
+    const double un = p.u[i] * line.normal[0] + p.v[i] * line.normal[1];
+    if (un * sign < 0.0) {  // moving into the wall: bounce
+      p.u[i] -= 2.0 * un * line.normal[0];
+      p.v[i] -= 2.0 * un * line.normal[1];
+    }
+  }
+  if (!inside) end = old;  // see kMaxReflections
+  if (end[0] == p.x[i] && end[1] == p.y[i]) return false;
+  p.x[i] = end[0];
+  p.y[i] = end[1];
+  return true;
 }
 
 }  // namespace swemps::boundaries

@@ -221,6 +221,25 @@ TEST_CASE("a ghost beyond a thin building is seen from its own side alone", "[bo
   }
 }
 
+TEST_CASE("a particle whose path is longer than its reach is kept inside as well", "[boundaries]") {
+  // A wall along x = 0; the particle starts 3 m from it with a reach of 0.5 m, so it has no
+  // wall of its own, and a 4 m path takes it 1 m beyond: it is reflected back to 1 m before.
+  GhostWalls wall(std::vector<boundaries::WallSegment>{{{0.0, -10.0}, {0.0, 10.0}}});
+  auto p = one_particle(-3.0, 0.0, 4.0, 0.0);
+  wall.add_ghosts(p, 0.5);
+  CHECK(p.ghost_count() == 0);
+  const std::vector<double> old_x{-3.0}, old_y{0.0};
+  p.x[0] = 1.0;
+  CHECK(wall.keep_inside(p, old_x, old_y) == 1);
+  CHECK(p.x[0] == Approx(-1.0));
+  CHECK(p.u[0] == Approx(-4.0));
+  // A short path that crosses nothing is left alone.
+  p.x[0] = -2.9;
+  const std::vector<double> from_x{-3.0};
+  CHECK(wall.keep_inside(p, from_x, old_y) == 0);
+  CHECK(p.x[0] == -2.9);
+}
+
 namespace {
 
 // Still water d_left deep in [0, 2] x [0, 2] and d_right deep in [2, 4] x [0, 2], on a flat

@@ -62,10 +62,10 @@ class GhostWalls {
   // ghost's fluid particle (after the depth summation has set them).
   static void copy_fields_to_ghosts(particles::SweParticles& p);
 
-  // After a move from (old_x, old_y): reflects back every near-wall particle whose path
-  // crossed a wall segment. Returns how many were reflected.
+  // After a move from (old_x, old_y): reflects back every particle whose path crossed a wall
+  // segment. Returns how many were reflected.
   std::size_t keep_inside(particles::SweParticles& p, std::span<const double> old_x,
-                          std::span<const double> old_y) const;
+                          std::span<const double> old_y);
 
   // Signed distance helpers, exposed for tests: true if segment p0-p1 crosses the wall.
   static bool crosses(const WallSegment& wall, std::array<double, 2> p0, std::array<double, 2> p1);
@@ -92,6 +92,12 @@ class GhostWalls {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> near_wall_;  // (particle, segment)
   // Particle i's walls are near_wall_[near_wall_start_[i] .. near_wall_start_[i + 1]).
   std::vector<std::uint32_t> near_wall_start_;
+  std::vector<double> near_wall_distance2_;  // each near_wall_ segment's from its particle
+  // Reflects particle i back from the walls (segment ids) its path from `start` crossed, as
+  // a billiard ball; true if it moved.
+  bool bounce_inside(particles::SweParticles& p, std::size_t i, std::array<double, 2> start,
+                     std::span<const std::uint32_t> walls) const;
+  std::vector<std::uint32_t> walls_met_;          // keep_inside's walls of one particle
   void place_ghosts(particles::SweParticles& p);  // add_ghosts() with the reaches set
   // True if the path from a particle at x to its ghost at g crosses a wall other than a and b,
   // those it is mirrored across: the ghost would stand beyond them.
@@ -110,6 +116,7 @@ class GhostWalls {
   };
   struct Chunk {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> near_wall;
+    std::vector<double> near_wall_distance2;
     std::vector<PlacedGhost> ghosts;
   };
   std::vector<Chunk> chunks_;
