@@ -6,6 +6,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "../support/particle_rows.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
 #include "swemps/neighbors/cell_list.hpp"
 #include "swemps/neighbors/neighbor_list.hpp"
@@ -184,12 +185,7 @@ TEST_CASE("a ghost beyond a thin building is seen from its own side alone", "[bo
   terrace.add_ghosts(p, reach);
   REQUIRE(p.ghost_count() >= 1);
   CHECK(p.y[3] == Approx(2.5));  // the street particle's ghost, beyond the terrace
-  const neighbors::Coordinates<2> coords{std::span<const double>(p.x),
-                                         std::span<const double>(p.y)};
-  neighbors::CellList<2> cells;
-  cells.build(coords, reach);
-  neighbors::NeighborList rows;
-  neighbors::build_neighbor_list<2>(cells, coords, p.fluid_count(), reach, rows);
+  neighbors::NeighborList rows = testing::rows_within(p, reach);
   const auto holds = [&](std::size_t i, std::uint32_t j) {
     const auto row = rows.row(i);
     return std::find(row.begin(), row.end(), j) != row.end();

@@ -8,6 +8,7 @@
 #include <set>
 #include <vector>
 
+#include "../support/particle_rows.hpp"
 #include "swemps/boundaries/ghost_walls.hpp"
 #include "swemps/boundaries/wall_index.hpp"
 #include "swemps/neighbors/cell_list.hpp"
@@ -179,12 +180,7 @@ TEST_CASE("the pairs hidden across walls are those a test of every wall hides", 
   for (int k = 0; k < 4000; ++k) p.add_fluid(at(random), at(random), 0.0, 0.0, 0.01, 0.3, 1.0, 0.0);
   const double reach = 4.0;
   indexed.add_ghosts(p, reach);
-  const neighbors::Coordinates<2> coords{std::span<const double>(p.x),
-                                         std::span<const double>(p.y)};
-  neighbors::CellList<2> cells;
-  cells.build(coords, reach);
-  neighbors::NeighborList rows;
-  neighbors::build_neighbor_list<2>(cells, coords, p.fluid_count(), reach, rows);
+  neighbors::NeighborList rows = testing::rows_within(p, reach);
   const neighbors::NeighborList searched = rows;
   const std::size_t hidden = indexed.hide_pairs_across_walls(p, rows);
   // By brute force: j stays in row i when it is one of i's ghosts, or when the path from the
