@@ -95,6 +95,8 @@ void InflowLine::apply(swe::StepContext& context) {
   const double particle_m3 = (total_m3 - leftover_m3) / static_cast<double>(rows * n);
   const double area_m2 = l * length_m_ / static_cast<double>(n);  // what each particle stands for
   const double u = speed * direction_[0], v = speed * direction_[1];
+  // The water enters over the step; it counts as entered at the step's end.
+  const particles::Origin origin{settings_.label, context.time_s + dt};
   double booked_m3 = 0.0;
   for (std::size_t r = 0; r < rows; ++r) {
     const double offset = 0.5 * l + beyond + static_cast<double>(r) * l;
@@ -102,11 +104,12 @@ void InflowLine::apply(swe::StepContext& context) {
       const double x = s[0] + offset * direction_[0];
       const double y = s[1] + offset * direction_[1];
       const double bed = settings_.bed ? settings_.bed->elevation(x, y) : 0.0;
-      p.add_fluid(x, y, u, v, particle_m3, depth, area_m2, bed);
+      p.add_fluid(x, y, u, v, particle_m3, depth, area_m2, bed, origin);
       booked_m3 += particle_m3;
     }
   }
   context.ledger.added_m3 += booked_m3;
+  context.ledger.add_to_label(settings_.label, booked_m3);
   added_m3_ += booked_m3;
   // The complement of what was booked, so that added + pending is the hydrograph's volume.
   pending_m3_ = std::max(0.0, total_m3 - booked_m3);

@@ -8,6 +8,7 @@ Removal remove_flagged(particles::SweParticles& p, std::span<const std::uint8_t>
   for (std::size_t i = 0; i < flagged.size(); ++i) {
     if (!flagged[i]) continue;
     removal.volume_m3 += p.volume[i];
+    ledger.remove_labelled(p, i);
     ++removal.particles;
   }
   if (removal.particles == 0) return removal;

@@ -331,8 +331,10 @@ void SeaBoundary::apply(swe::StepContext& context) {
       const double volume = s.depth * summed_area(b);
       const auto [u, v] = velocity(s);
       const double bed = settings_.bed ? settings_.bed->elevation(b.x, b.y) : 0.0;
-      p.add_fluid(b.x, b.y, u, v, volume, s.depth, b.made ? b.area_m2 : summed_area(b), bed);
+      p.add_fluid(b.x, b.y, u, v, volume, s.depth, b.made ? b.area_m2 : summed_area(b), bed,
+                  {settings_.label, context.time_s + dt});
       context.ledger.added_m3 += volume;
+      context.ledger.add_to_label(settings_.label, volume);
       added_m3_ += volume;
       ++particles_added_;
       continue;

@@ -103,7 +103,10 @@ MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& t
       statistics_(grid.nx * grid.ny,
                   {scene.output.wet_depth_m, scene.output.depth_thresholds_m, scene.output.land_use,
                    tsunami_ ? std::optional<maps::TsunamiLevels>(tsunami_->levels) : std::nullopt},
-                  bed_m_) {
+                  bed_m_),
+      provenance_(grid.nx * grid.ny,
+                  scene.output.provenance.sources ? scenario::provenance_labels(scene).size() : 0,
+                  scene.output.provenance.age, scene.output.wet_depth_m) {
   const std::string started = utc_now();
   io::RunMetadata meta;
   meta.title = scene.name;
@@ -128,6 +131,8 @@ MapOutput::MapOutput(const scenario::Scenario& scene, const scenario::Terrain& t
   for (const auto& g : scene.output.gauges) {
     layout.gauges.push_back({g.name, g.position_m[0], g.position_m[1]});
   }
+  if (scene.output.provenance.sources) layout.sources = scenario::provenance_labels(scene);
+  layout.ages = scene.output.provenance.age;
   if (resume) {
     try {
       writer_ = std::make_unique<io::NetcdfWriter>(scene.output.path, layout, meta, *resume);
@@ -152,7 +157,20 @@ void MapOutput::write_maps(double time_s, const GriddedState& state,
     u[c] = state.u[c];
     v[c] = state.v[c];
   }
-  const io::MapFields fields{state.depth, surface, u, v};
+  // Where the water came from, where the cell is wet: a film's shares and age are noise.
+  std::vector<double> source_share(state.source_depth.size(), kNaN), mean_age;
+  for (std::size_t k = 0; k < source_share.size(); ++k) {
+    const std::size_t c = k % cells;
+    if (state.depth[c] > wet_depth_m_) source_share[k] = state.source_depth[k] / state.depth[c];
+  }
+  if (!state.entry_time.empty()) {
+    mean_age.assign(cells, kNaN);
+    for (std::size_t c = 0; c < cells; ++c) {
+      if (state.depth[c] > wet_depth_m_) mean_age[c] = time_s - state.entry_time[c];
+    }
+  }
+  const io::MapFields fields{state.depth,        surface,      u,       v,
+                             state.source_depth, source_share, mean_age};
   writing([&] {
     if (particles != nullptr) {
       writer_->write(time_s, *particles, fields);
@@ -164,6 +182,9 @@ void MapOutput::write_maps(double time_s, const GriddedState& state,
 
 void MapOutput::update_statistics(double time_s, const GriddedState& state) {
   statistics_.update(time_s, state.depth, state.u, state.v);
+  if (provenance_.sources() > 0 || provenance_.ages()) {
+    provenance_.update(time_s, state.depth, state.source_depth, state.entry_time);
+  }
 }
 
 void MapOutput::sample_series(double time_s, std::span<const io::GaugeSample> gauges,
@@ -178,6 +199,7 @@ double MapOutput::bed_at(double x_m, double y_m) const {
 void MapOutput::finish() {
   writing([&] {
     writer_->write_summary(statistics_);
+    writer_->write_provenance_summary(provenance_);
     writer_->write_status("complete", "");
     writer_->finish();
   });
@@ -208,6 +230,7 @@ void MapOutput::finish() {
 void MapOutput::close_stopped(const std::string& status, const std::string& message) {
   writing([&] {
     writer_->write_summary(statistics_);
+    writer_->write_provenance_summary(provenance_);
     writer_->write_status(status, message);
     writer_->close_partial();
   });
@@ -227,6 +250,10 @@ void MapOutput::save_state(swe::StateWriter& out) const {
   out.count(statistics_.samples());
   out.number(statistics_.last_time());
   for (const auto map : statistics_.maps()) out.numbers(map);
+  // Only with provenance: a record without it is laid out as before.
+  if (provenance_.sources() > 0 || provenance_.ages()) {
+    for (const auto map : provenance_.maps()) out.numbers(map);
+  }
 }
 
 io::WriterPosition MapOutput::read_position(swe::StateReader& in) {
@@ -245,6 +272,11 @@ void MapOutput::restore_statistics(swe::StateReader& in) {
   for (std::size_t k = 0; k < statistics_.maps().size(); ++k) maps.push_back(in.numbers());
   try {
     statistics_.restore(samples, last_time_s, std::move(maps));
+    if (provenance_.sources() > 0 || provenance_.ages()) {
+      std::vector<std::vector<double>> maxima;
+      for (std::size_t k = 0; k < provenance_.maps().size(); ++k) maxima.push_back(in.numbers());
+      provenance_.restore(std::move(maxima));
+    }
   } catch (const std::invalid_argument& e) {
     throw swe::StateError(in.what() + " does not fit this scene's output grid: " + e.what());
   }

@@ -66,7 +66,7 @@ class SweOutput {
     if (mapped_ && mapped_step_ == sim.steps() && mapped_time_s_ == sim.time()) return;
     const auto start = Clock::now();
     const auto& f = fields(sim);
-    file_.write_maps(sim.time(), {f.depth, f.u, f.v},
+    file_.write_maps(sim.time(), {f.depth, f.u, f.v, f.label_depth, f.entry_time},
                      write_particles_ ? &sim.particles() : nullptr);
     mapped_ = true;
     mapped_step_ = sim.steps();
@@ -89,7 +89,7 @@ class SweOutput {
     sim.refresh();
     const auto start = Clock::now();
     const auto& f = fields(sim);
-    file_.update_statistics(sim.time(), {f.depth, f.u, f.v});
+    file_.update_statistics(sim.time(), {f.depth, f.u, f.v, f.label_depth, f.entry_time});
     counted_ = true;
     counted_step_ = sim.steps();
     ++statistics_samples_;
@@ -112,13 +112,30 @@ class SweOutput {
       const bool wet = depth > file_.wet_depth_m();
       at_gauges.push_back({depth, wet ? around.u.front() : kNaN, wet ? around.v.front() : kNaN,
                            wet ? surface : kNaN});
+      // The shares of the water in the gauge's cell (its volume is its depth there).
+      const std::size_t labels = sim.particles().label_count();
+      for (std::size_t k = 0; k < labels; ++k) {
+        const double cell_depth = around.depth.front();
+        at_gauges.back().source_share.push_back(
+            wet && cell_depth > 0.0 ? around.label_depth[k] / cell_depth : kNaN);
+      }
     }
     const auto& ledger = sim.ledger();
+    const std::size_t labels = sim.particles().label_count();
+    std::vector<double> label_volume(labels), label_error(labels);
+    for (std::size_t k = 0; k < labels; ++k) {
+      label_volume[k] = sim.particles().label_volume(k);
+      label_error[k] = sim.relative_label_volume_change(k);
+    }
     const io::BalanceSample balance{.in_domain_m3 = sim.fluid_volume(),
                                     .inflow_m3 = ledger.added_m3,
                                     .rain_m3 = ledger.rain_m3,
                                     .outflow_m3 = ledger.removed_m3,
-                                    .relative_error = sim.relative_volume_change()};
+                                    .relative_error = sim.relative_volume_change(),
+                                    .source_in_domain_m3 = label_volume,
+                                    .source_inflow_m3 = ledger.label_added_m3,
+                                    .source_outflow_m3 = ledger.label_removed_m3,
+                                    .source_relative_error = label_error};
     file_.sample_series(sim.time(), at_gauges, balance);
     sampled_ = true;
     sampled_step_ = sim.steps();

@@ -171,6 +171,8 @@ void Rain::apply(swe::StepContext& context) {
     }
   }
 
+  // The rain of the step counts as entered at the step's end.
+  const particles::Origin origin{settings_.label, context.time_s + context.dt_s};
   double booked_m3 = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     double gain_m3 = 0.0;
@@ -183,6 +185,7 @@ void Rain::apply(swe::StepContext& context) {
     const double keep = p.volume[i] / (p.volume[i] + gain_m3);
     p.u[i] *= keep;
     p.v[i] *= keep;
+    p.mix_in(i, p.volume[i], gain_m3, origin);
     p.volume[i] += gain_m3;
     booked_m3 += gain_m3;
   }
@@ -191,7 +194,7 @@ void Rain::apply(swe::StepContext& context) {
     const double depth = pending_m_[k];
     const double volume = depth * cell_area;
     const double bed = settings_.bed ? settings_.bed->elevation(x, y) : 0.0;
-    p.add_fluid(x, y, 0.0, 0.0, volume, depth, cell_area, bed);
+    p.add_fluid(x, y, 0.0, 0.0, volume, depth, cell_area, bed, origin);
     booked_m3 += volume;
     pending_m_[k] = 0.0;
   }
@@ -200,6 +203,7 @@ void Rain::apply(swe::StepContext& context) {
   lost_m3_ += lost_m * cell_area;
   added_m3_ += booked_m3;
   context.ledger.rain_m3 += booked_m3;
+  context.ledger.add_to_label(settings_.label, booked_m3);
 }
 
 double Rain::pending_volume() const {

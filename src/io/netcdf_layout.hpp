@@ -111,10 +111,12 @@ class Definer {
     ids.v = map_var("v", map_dims, "m s-1", nullptr, "depth-averaged velocity along y");
     if (layout.particles) define_particles(time_dim, ids);
     define_series(layout.gauges, meta.time_units, ids);
+    define_provenance(layout, time_dim, ids);
     ok(nc_enddef(ncid_), "leave define mode");
 
     write_grid(grid);
     write_gauges(layout.gauges);
+    write_sources(layout.sources);
     return ids;
   }
 
@@ -416,6 +418,91 @@ class Definer {
     }
   }
 
+  // Where the water came from (docs/provenance.md): the sources along dimension `source`, the
+  // maps of each one's water and of the water's mean age, each source's volume balance and its
+  // share at the gauges.
+  void define_provenance(const Layout& layout, int time_dim, detail::NetcdfIds& ids) const {
+    if (layout.ages) {
+      ids.mean_age = map_var("mean_age", std::array{time_dim, ids.y_dim, ids.x_dim}, "s", nullptr,
+                             "volume-weighted mean age of the cell's water: the time since it "
+                             "entered the domain (the starting water at t = 0)");
+    }
+    if (layout.sources.empty()) return;
+    int source_dim = -1;
+    ok(nc_def_dim(ncid_, "source", layout.sources.size(), &source_dim), "define dimension source");
+    // A numeric coordinate (CF's coordinate variables are numbers) that GDAL shows in each
+    // band's metadata as NETCDF_DIM_source; source_name labels it.
+    const int index = def_var("source", NC_INT, std::array{source_dim});
+    texts(index, {{"long_name", "index of the source of the water in source_name"},
+                  {"units", "1"}});
+    const int name = def_var("source_name", NC_STRING, std::array{source_dim});
+    text(name, "long_name",
+         "name of the source of the water (a water body, inflow, sea boundary "
+         "or rain of the scene)");
+    const std::array dims{time_dim, source_dim, ids.y_dim, ids.x_dim};
+    ids.source_depth = map_var("source_depth", dims, "m", nullptr,
+                               "depth of the water that came from each source");
+    ids.source_share = map_var("source_share", dims, "1", nullptr,
+                               "share of the cell's water that came from each source; fill "
+                               "value where the cell is not wet");
+    for (const int id : {ids.source_depth, ids.source_share}) {
+      text(id, "coordinates", "source_name");
+    }
+    int series_dim = -1;
+    ok(nc_inq_dimid(ncid_, "series_time", &series_dim), "find dimension series_time");
+    const std::size_t n = layout.sources.size();
+    const std::array balance_dims{series_dim, source_dim};
+    ids.source_in_domain = series_var("source_volume_in_domain", balance_dims, n, "m3",
+                                      "volume of each source's water in the domain");
+    ids.source_inflow = series_var("source_volume_inflow", balance_dims, n, "m3",
+                                   "cumulative volume of each source's water that entered after "
+                                   "the start (inflow, sea boundary, rain)");
+    ids.source_outflow = series_var("source_volume_outflow", balance_dims, n, "m3",
+                                    "cumulative volume of each source's water that flowed out or "
+                                    "was removed");
+    ids.source_error = series_var("source_volume_error", balance_dims, n, "1",
+                                  "relative volume balance error of each source's water: (in "
+                                  "domain - (initial + inflow - outflow)) / (initial + inflow)");
+    for (const int id :
+         {ids.source_in_domain, ids.source_inflow, ids.source_outflow, ids.source_error}) {
+      text(id, "coordinates", "source_name");
+    }
+    if (layout.gauges.empty()) return;
+    int gauge_dim = -1;
+    ok(nc_inq_dimid(ncid_, "gauge", &gauge_dim), "find dimension gauge");
+    const char* share_name = "gauge_source_share";
+    ids.gauge_source_share =
+        def_var(share_name, NC_DOUBLE, std::array{series_dim, gauge_dim, source_dim});
+    const std::size_t width = layout.gauges.size() * n;
+    compress(
+        ids.gauge_source_share, share_name,
+        std::array{std::max<std::size_t>(1, kSeriesChunkValues / width), layout.gauges.size(), n},
+        kDeflateLevel);
+    ok(nc_put_att_double(ncid_, ids.gauge_source_share, "_FillValue", NC_DOUBLE, 1, &kFillDouble),
+       "write attribute _FillValue of gauge_source_share");
+    texts(ids.gauge_source_share,
+          {{"units", "1"},
+           {"long_name",
+            "share of each source in the water at the gauge; fill value where the "
+            "gauge is not wet"},
+           {"coordinates", "gauge_x gauge_y gauge_name source_name"}});
+  }
+
+  void write_sources(const std::vector<std::string>& sources) const {
+    if (sources.empty()) return;
+    std::vector<const char*> names;
+    std::vector<int> indices;
+    for (const std::string& s : sources) {
+      names.push_back(s.c_str());
+      indices.push_back(static_cast<int>(indices.size()));
+    }
+    int id = -1;
+    ok(nc_inq_varid(ncid_, "source_name", &id), "find variable source_name");
+    ok(nc_put_var_string(ncid_, id, names.data()), "write variable source_name");
+    ok(nc_inq_varid(ncid_, "source", &id), "find variable source");
+    ok(nc_put_var_int(ncid_, id, indices.data()), "write variable source");
+  }
+
   void write_axis(int varid, double origin, double step, std::size_t n, const char* purpose) const {
     std::vector<double> values(n);
     for (std::size_t i = 0; i < n; ++i) values[i] = origin + static_cast<double>(i) * step;
@@ -501,6 +588,7 @@ class Resumer {
       ids.gauge_u = variable("gauge_u");
       ids.gauge_v = variable("gauge_v");
     }
+    find_provenance(layout, ids);
 
     const std::size_t records = length_of(ids.time), series = length_of(ids.series_time);
     if (records < position.records || series < position.series_records) {
@@ -525,6 +613,31 @@ class Resumer {
   }
 
   bool has_variable(const char* name) const { return optional_variable(name) >= 0; }
+
+  void find_provenance(const Layout& layout, detail::NetcdfIds& ids) const {
+    if (has_variable("mean_age") != layout.ages) {
+      mismatch(layout.ages ? "has no mean_age, which this run writes"
+                           : "has mean_age, which this run does not write");
+    }
+    if (layout.ages) ids.mean_age = variable("mean_age");
+    int source_dim = -1;
+    std::size_t sources = 0;
+    if (nc_inq_dimid(ncid_, "source", &source_dim) == NC_NOERR) {
+      ok(nc_inq_dimlen(ncid_, source_dim, &sources), "read the length of dimension source");
+    }
+    if (sources != layout.sources.size()) {
+      mismatch("has " + std::to_string(sources) + " sources of water, this run " +
+               std::to_string(layout.sources.size()));
+    }
+    if (sources == 0) return;
+    ids.source_depth = variable("source_depth");
+    ids.source_share = variable("source_share");
+    ids.source_in_domain = variable("source_volume_in_domain");
+    ids.source_inflow = variable("source_volume_inflow");
+    ids.source_outflow = variable("source_volume_outflow");
+    ids.source_error = variable("source_volume_error");
+    if (!layout.gauges.empty()) ids.gauge_source_share = variable("gauge_source_share");
+  }
 
   int optional_variable(const char* name) const {
     int id = -1;

@@ -157,6 +157,41 @@ void NetcdfWriter::write_maps(double time_s, const MapFields& fields) {
     const std::vector<float> stored = to_stored_floats(m.values);
     ok(nc_put_vara_float(ncid_, m.varid, start.data(), count.data(), stored.data()), m.purpose);
   }
+  write_provenance_maps(fields);
+}
+
+void NetcdfWriter::write_provenance_maps(const MapFields& fields) {
+  const auto ok = [this](int status, const char* purpose) {
+    check(status, purpose, partial_path_);
+  };
+  const std::size_t rec = records_;
+  if (layout_.ages) {
+    require_grid_sized(fields.mean_age, "write", "mean_age");
+    const std::array<std::size_t, 3> start{rec, 0, 0};
+    const std::array<std::size_t, 3> count{1, layout_.grid.ny, layout_.grid.nx};
+    const std::vector<float> stored = to_stored_floats(fields.mean_age);
+    ok(nc_put_vara_float(ncid_, ids_.mean_age, start.data(), count.data(), stored.data()),
+       "write variable mean_age");
+  }
+  const std::size_t sources = layout_.sources.size();
+  if (sources == 0) return;
+  const std::size_t cells = layout_.grid.nx * layout_.grid.ny;
+  for (const auto& [values, name] : {std::pair{fields.source_depth, "source_depth"},
+                                     std::pair{fields.source_share, "source_share"}}) {
+    if (values.size() != sources * cells) {
+      throw std::invalid_argument(std::string("NetcdfWriter::write: ") + name + " for " +
+                                  quoted(path_) + " has " + std::to_string(values.size()) +
+                                  " values, expected " + std::to_string(sources * cells));
+    }
+  }
+  const std::array<std::size_t, 4> start{rec, 0, 0, 0};
+  const std::array<std::size_t, 4> count{1, sources, layout_.grid.ny, layout_.grid.nx};
+  const std::vector<float> depth = to_stored_floats(fields.source_depth);
+  ok(nc_put_vara_float(ncid_, ids_.source_depth, start.data(), count.data(), depth.data()),
+     "write variable source_depth");
+  const std::vector<float> share = to_stored_floats(fields.source_share);
+  ok(nc_put_vara_float(ncid_, ids_.source_share, start.data(), count.data(), share.data()),
+     "write variable source_share");
 }
 
 void NetcdfWriter::write(double time_s, const MapFields& fields) {
@@ -251,7 +286,52 @@ void NetcdfWriter::write_series(double time_s, std::span<const GaugeSample> gaug
     ok(nc_put_vara_double(ncid_, ids_.gauge_v, start.data(), count.data(), v.data()),
        "write variable gauge_v");
   }
+  write_provenance_series(gauges, balance);
   ++series_records_;
+}
+
+void NetcdfWriter::write_provenance_series(std::span<const GaugeSample> gauges,
+                                           const BalanceSample& balance) {
+  const std::size_t sources = layout_.sources.size();
+  if (sources == 0) return;
+  const auto ok = [this](int status, const char* purpose) {
+    check(status, purpose, partial_path_);
+  };
+  const std::size_t rec = series_records_;
+  const struct {
+    int varid;
+    std::span<const double> values;
+    const char* name;
+  } books[] = {{ids_.source_in_domain, balance.source_in_domain_m3, "source_volume_in_domain"},
+               {ids_.source_inflow, balance.source_inflow_m3, "source_volume_inflow"},
+               {ids_.source_outflow, balance.source_outflow_m3, "source_volume_outflow"},
+               {ids_.source_error, balance.source_relative_error, "source_volume_error"}};
+  const std::array<std::size_t, 2> start{rec, 0}, count{1, sources};
+  for (const auto& b : books) {
+    if (b.values.size() != sources) {
+      throw std::invalid_argument(std::string("NetcdfWriter::write_series: ") + b.name + " for " +
+                                  quoted(path_) + " has " + std::to_string(b.values.size()) +
+                                  " values, expected " + std::to_string(sources));
+    }
+    std::vector<double> stored(sources);
+    for (std::size_t k = 0; k < sources; ++k) stored[k] = to_stored(b.values[k]);
+    ok(nc_put_vara_double(ncid_, b.varid, start.data(), count.data(), stored.data()),
+       (std::string("write variable ") + b.name).c_str());
+  }
+  if (gauges.empty()) return;
+  std::vector<double> shares;
+  for (const GaugeSample& g : gauges) {
+    if (g.source_share.size() != sources) {
+      throw std::invalid_argument("NetcdfWriter::write_series: a gauge sample for " +
+                                  quoted(path_) + " has " + std::to_string(g.source_share.size()) +
+                                  " source shares, expected " + std::to_string(sources));
+    }
+    for (const double s : g.source_share) shares.push_back(to_stored(s));
+  }
+  const std::array<std::size_t, 3> gauge_start{rec, 0, 0}, gauge_count{1, gauges.size(), sources};
+  ok(nc_put_vara_double(ncid_, ids_.gauge_source_share, gauge_start.data(), gauge_count.data(),
+                        shares.data()),
+     "write variable gauge_source_share");
 }
 
 void NetcdfWriter::write_bed(std::span<const double> bed_m) {

@@ -296,6 +296,9 @@ CellFields CellAverages::fields(const particles::SweParticles& p,
   const std::size_t n = p.fluid_count();
   if (n == 0 || cells == 0) return out;
   std::vector<double> qx(cells, 0.0), qy(cells, 0.0), volume_surface(cells, 0.0);
+  const std::size_t labels = p.label_count();
+  if (labels > 0) out.label_depth.assign(labels * cells, 0.0);
+  if (p.tracks_ages()) out.entry_time.assign(cells, 0.0);
   // Blocks of particles find their shares in parallel, each into its own list with the
   // particles' ranges in it; the lists are then added in particle order, so that the maps do
   // not depend on the number of threads.
@@ -337,6 +340,7 @@ CellFields CellAverages::fields(const particles::SweParticles& p,
     std::size_t s = 0;
     const std::size_t j1 = std::min(n, (b + 1) * kBlock);
     for (std::size_t j = b * kBlock; j < j1; ++j) {
+      const std::size_t s_first = s;
       const double volume = p.volume[j];
       const double momentum_x = volume * p.u[j], momentum_y = volume * p.v[j];
       const double volume_times_surface = volume * (p.bed[j] + p.depth[j]);
@@ -348,6 +352,7 @@ CellFields CellAverages::fields(const particles::SweParticles& p,
         qy[share.cell] += share.fraction * momentum_y;
         volume_surface[share.cell] += share.fraction * volume_times_surface;
       }
+      if (labels > 0 || p.tracks_ages()) add_provenance(p, j, list, s_first, ends_[j], out);
     }
   }
   const double cell_area = grid_.dx * grid_.dy;
@@ -359,7 +364,30 @@ CellFields CellAverages::fields(const particles::SweParticles& p,
     out.v[c] = qy[c] / volume;
     out.surface[c] = volume_surface[c] / volume;
   }
+  for (double& volume : out.label_depth) volume /= cell_area;
+  for (std::size_t c = 0; c < out.entry_time.size(); ++c) {
+    // The volume is the cell's before it was divided by the area: its depth times the area.
+    const double volume = out.depth[c] * cell_area;
+    out.entry_time[c] = volume > 0.0 ? out.entry_time[c] / volume : kNaN;
+  }
   return out;
+}
+
+void CellAverages::add_provenance(const particles::SweParticles& p, std::size_t j,
+                                  const std::vector<Share>& list, std::size_t first,
+                                  std::size_t end, CellFields& out) {
+  const std::size_t labels = p.label_count();
+  const std::size_t cells = grid_cells(out);
+  const double volume = p.volume[j];
+  for (std::size_t s = first; s < end; ++s) {
+    const Share& share = list[s];
+    if (share.cell == kOffMap) continue;
+    const double part = share.fraction * volume;
+    for (std::size_t k = 0; k < labels; ++k) {
+      out.label_depth[k * cells + share.cell] += part * p.label_share[j * labels + k];
+    }
+    if (!out.entry_time.empty()) out.entry_time[share.cell] += part * p.entry_time[j];
+  }
 }
 
 }  // namespace swemps::maps

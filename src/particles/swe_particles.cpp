@@ -45,7 +45,7 @@ void require_permutation(std::span<const std::uint32_t> order) {
 }  // namespace
 
 void SweParticles::add_fluid(double px, double py, double pu, double pv, double vol, double h,
-                             double a0, double zb) {
+                             double a0, double zb, Origin origin) {
   // Ghosts sit behind the fluid block; appending fluid behind them would break the
   // "fluid first" layout every loop relies on.
   if (ghost_count() != 0) {
@@ -65,6 +65,15 @@ void SweParticles::add_fluid(double px, double py, double pu, double pv, double 
   smoothing_length.push_back(0.0);
   omega.push_back(1.0);
   source.push_back(own);
+  if (label_count_ > 0) {
+    if (origin.label >= label_count_) {
+      throw std::out_of_range("SweParticles::add_fluid: label " + std::to_string(origin.label) +
+                              " of " + std::to_string(label_count_));
+    }
+    label_share.resize(label_share.size() + label_count_, 0.0);
+    label_share[fluid_count_ * label_count_ + origin.label] = 1.0;
+  }
+  if (tracks_ages_) entry_time.push_back(origin.entry_time_s);
   ++fluid_count_;
   mirror_end_ = fluid_count_;
 }
@@ -129,6 +138,17 @@ void SweParticles::reorder(std::span<const std::uint32_t> order) {
         &smoothing_length, &omega}) {
     permute(*field, order, scratch);
   }
+  if (tracks_ages_) permute(entry_time, order, scratch);
+  if (label_count_ > 0) {
+    const std::size_t labels = label_count_;
+    scratch.resize(label_share.size());
+    parallel_for(order.size(), [&](std::size_t k) {
+      for (std::size_t l = 0; l < labels; ++l) {
+        scratch[k * labels + l] = label_share[order[k] * labels + l];
+      }
+    });
+    label_share.swap(scratch);
+  }
   // Fluid particles are their own source, so the permuted field is simply 0..n-1.
   std::iota(source.begin(), source.end(), std::uint32_t{0});
 }
@@ -146,6 +166,18 @@ void SweParticles::remove(std::span<const std::uint8_t> flagged) {
         &smoothing_length, &omega}) {
     compact(*field, flagged);
   }
+  if (tracks_ages_) compact(entry_time, flagged);
+  if (label_count_ > 0) {
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < flagged.size(); ++i) {
+      if (flagged[i]) continue;
+      for (std::size_t l = 0; l < label_count_; ++l) {
+        label_share[kept * label_count_ + l] = label_share[i * label_count_ + l];
+      }
+      ++kept;
+    }
+    label_share.resize(kept * label_count_);
+  }
   fluid_count_ = x.size();
   mirror_end_ = fluid_count_;
   source.resize(fluid_count_);
@@ -157,6 +189,48 @@ double SweParticles::total_fluid_volume() const {
   // checks can compare it exactly.
   double sum = 0.0;
   for (std::size_t i = 0; i < fluid_count_; ++i) sum += volume[i];
+  return sum;
+}
+
+void SweParticles::track_provenance(std::size_t labels, bool ages) {
+  if (size() != 0) {
+    throw std::logic_error("SweParticles::track_provenance: only before the first particle");
+  }
+  label_count_ = labels;
+  tracks_ages_ = ages;
+}
+
+void SweParticles::copy_provenance(std::size_t from, std::size_t to) {
+  for (std::size_t l = 0; l < label_count_; ++l) {
+    label_share[to * label_count_ + l] = label_share[from * label_count_ + l];
+  }
+  if (tracks_ages_) entry_time[to] = entry_time[from];
+}
+
+void SweParticles::mix_provenance(std::size_t a, double volume_a, std::size_t b, double volume_b) {
+  const double total = volume_a + volume_b;
+  for (std::size_t l = 0; l < label_count_; ++l) {
+    double& share = label_share[a * label_count_ + l];
+    share = (volume_a * share + volume_b * label_share[b * label_count_ + l]) / total;
+  }
+  if (tracks_ages_) entry_time[a] = (volume_a * entry_time[a] + volume_b * entry_time[b]) / total;
+}
+
+void SweParticles::mix_in(std::size_t i, double volume_m3, double added_m3, Origin origin) {
+  const double total = volume_m3 + added_m3;
+  for (std::size_t l = 0; l < label_count_; ++l) {
+    double& share = label_share[i * label_count_ + l];
+    share = (volume_m3 * share + (l == origin.label ? added_m3 : 0.0)) / total;
+  }
+  if (tracks_ages_) {
+    entry_time[i] = (volume_m3 * entry_time[i] + added_m3 * origin.entry_time_s) / total;
+  }
+}
+
+double SweParticles::label_volume(std::size_t k) const {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < fluid_count_; ++i)
+    sum += volume[i] * label_share[i * label_count_ + k];
   return sum;
 }
 

@@ -52,13 +52,14 @@ double slack_for(const Rectangle& r) {
 }
 
 std::unique_ptr<swe::Effect> make_inflow(const Inflow& in, std::size_t index,
-                                         const Terrain& terrain) {
+                                         const Terrain& terrain, std::uint32_t label) {
   const std::string path = json_reading::element_path("/inflow", index);
   SeriesPoints points =
       series_points(in.hydrograph, io::read_hydrograph_csv, path + "/hydrograph_csv",
                     "a CSV file of time (s) and discharge (m^3/s) columns");
   boundaries::InflowLineSettings settings;
   settings.name = in.name;
+  settings.label = label;
   settings.from = in.line[0];
   settings.to = in.line[1];
   settings.direction = in.direction
@@ -130,10 +131,12 @@ bool on_a_wall(const Point& point, const std::vector<Wall>& walls, const Rectang
 std::unique_ptr<swe::Effect> make_sea_boundary(const SeaBoundarySpec& spec, std::size_t index,
                                                const Terrain& terrain,
                                                const std::vector<Wall>& walls,
-                                               const particles::SweParticles& seeded) {
+                                               const particles::SweParticles& seeded,
+                                               std::uint32_t label) {
   const std::string path = json_reading::element_path("/sea_boundaries", index);
   boundaries::SeaBoundarySettings settings;
   settings.name = spec.name;
+  settings.label = label;
   settings.from = spec.line[0];
   settings.to = spec.line[1];
   const auto inward = towards_centre(spec.line, terrain.domain, path + "/line",

@@ -30,8 +30,9 @@ SeriesPoints series_points(const std::variant<SeriesPoints, std::filesystem::pat
                            const std::string& csv_path, const std::string& expected);
 
 // Inflow `index` of the scene (its hydrograph file read now); ScenarioError at its key.
+// `label`: the provenance label of the water it lets in (provenance_label()).
 std::unique_ptr<swe::Effect> make_inflow(const Inflow& in, std::size_t index,
-                                         const Terrain& terrain);
+                                         const Terrain& terrain, std::uint32_t label);
 std::unique_ptr<swe::Effect> make_outflow(const std::vector<Outflow>& outflows);
 // Sea boundary `index`, facing away from the domain's centre, its buffer mirrored at an end
 // that lies on one of `walls`. An open boundary
@@ -40,6 +41,7 @@ std::unique_ptr<swe::Effect> make_outflow(const std::vector<Outflow>& outflows);
 std::unique_ptr<swe::Effect> make_sea_boundary(const SeaBoundarySpec& spec, std::size_t index,
                                                const Terrain& terrain,
                                                const std::vector<Wall>& walls,
-                                               const particles::SweParticles& seeded);
+                                               const particles::SweParticles& seeded,
+                                               std::uint32_t label);
 
 }  // namespace swemps::scenario

@@ -288,6 +288,9 @@ std::vector<char> lake_from_point(const WaterBody& body, const particles::Lattic
 Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
   Seeded out;
   auto& p = out.particles;
+  // Provenance is kept only when the output asks for it: otherwise it costs nothing.
+  const ProvenanceOutput& provenance = scene.output.provenance;
+  p.track_provenance(provenance.sources ? provenance_labels(scene).size() : 0, provenance.age);
   const swe::BedSource* bed = terrain.bed.get();
   // The still water's depth is measured over the floor before a rupture: the water over the
   // floor keeps its depth as the floor moves, so its surface moves with the floor.
@@ -317,6 +320,7 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
     }
     const std::vector<char> in_lake = lake_from_point(body, lattice, depth_at, i);
     const StartingSurface start(scene, terrain, i);
+    const particles::Origin origin{provenance_label(scene, body.name), 0.0};
     const bool displaced = !std::holds_alternative<std::monostate>(body.displacement);
     std::size_t added = 0;
     for (std::size_t m = 0; m < count; ++m) {
@@ -344,7 +348,8 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
       }
       const auto [u, v] = start.velocity(point[0], point[1]);
       // Each particle carries the water of its lattice cell: the scene's volume exactly.
-      p.add_fluid(point[0], point[1], u, v, h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b);
+      p.add_fluid(point[0], point[1], u, v, h * lattice.cell_area_m2, h, lattice.cell_area_m2, z_b,
+                  origin);
       out.target_depth_m.push_back(h);
       out.from_terrain.push_back(uniform ? 0 : 1);
       out.volumes.geometric_m3 += h * lattice.cell_area_m2;
@@ -624,13 +629,15 @@ BuiltScene build(const Scenario& scene) {
   // may follow; new rows are tested by the lines from the next step on, when they have a path.
   if (!scene.outflows.empty()) effects.push_back(make_outflow(scene.outflows));
   for (std::size_t i = 0; i < scene.inflows.size(); ++i) {
-    effects.push_back(make_inflow(scene.inflows[i], i, terrain));
+    effects.push_back(
+        make_inflow(scene.inflows[i], i, terrain, provenance_label(scene, scene.inflows[i].name)));
   }
   // Sea boundaries remove particles without reading the positions before the move; they come
   // before the domain's edges, which would take the same particles without a word.
   for (std::size_t i = 0; i < scene.sea_boundaries.size(); ++i) {
-    effects.push_back(
-        make_sea_boundary(scene.sea_boundaries[i], i, terrain, scene.walls, seeded.particles));
+    effects.push_back(make_sea_boundary(scene.sea_boundaries[i], i, terrain, scene.walls,
+                                        seeded.particles,
+                                        provenance_label(scene, scene.sea_boundaries[i].name)));
   }
   const auto& d = terrain.domain;
   effects.push_back(std::make_unique<boundaries::DomainOutflow>(
@@ -638,7 +645,8 @@ BuiltScene build(const Scenario& scene) {
   // Rain finds the water over its cells where the step left it, every particle that left the
   // domain gone; what it creates is summed before merging may take it.
   for (std::size_t i = 0; i < scene.rain.size(); ++i) {
-    effects.push_back(make_rain(scene.rain[i], terrain.rain.at(i), terrain));
+    effects.push_back(make_rain(scene.rain[i], terrain.rain.at(i), terrain,
+                                provenance_label(scene, scene.rain[i].name)));
   }
   // Merging removes particles too, so it comes after every effect that reads the positions
   // before the move; it merges the particles let in this step only once they are summed.

@@ -83,10 +83,11 @@ std::unique_ptr<hydrology::RainLoss> rain_losses(const RainSpec& spec,
 }  // namespace
 
 std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain::RainMaps& maps,
-                                       const Terrain& terrain) {
+                                       const Terrain& terrain, std::uint32_t label) {
   const std::string& path = spec.key_path;
   hydrology::RainSettings settings;
   settings.name = spec.name;
+  settings.label = label;
   const auto& d = terrain.domain;
   settings.domain = {d.x_min, d.x_max, d.y_min, d.y_max};
   settings.spacing_m = spec.spacing_m;

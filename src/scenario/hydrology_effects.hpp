@@ -14,7 +14,8 @@ namespace swemps::scenario {
 
 // A rain of the scene over the terrain's domain, with the maps read for it (terrain.rain) and
 // its rate file read now; ScenarioError at its key.
+// `label`: the provenance label of its water (provenance_label()).
 std::unique_ptr<swe::Effect> make_rain(const RainSpec& spec, const Terrain::RainMaps& maps,
-                                       const Terrain& terrain);
+                                       const Terrain& terrain, std::uint32_t label);
 
 }  // namespace swemps::scenario

@@ -349,6 +349,11 @@ void check_ns_scene(const Scenario& s) {
         "/fault_source", "a fault source",
         "no \"fault_source\" (" + unsupported("a fault source") + ": the tank's floor is flat)");
   }
+  if (s.output.provenance.any()) {
+    throw ScenarioError("/output/provenance", "provenance output",
+                        "no \"provenance\" (" + unsupported("provenance") +
+                            ": its particles carry no source or age)");
+  }
   if (s.manning_n) {
     throw ScenarioError("/friction", "bed friction",
                         "no \"friction\" (" + unsupported("Manning friction") +

@@ -291,15 +291,24 @@ std::vector<std::string> read_rasters(const Object& o, bool tsunami) {
   return out;
 }
 
+ProvenanceOutput read_provenance(const json* v, const std::string& path) {
+  if (v == nullptr) return {};
+  const Object o(*v, path, {"sources", "age"}, "an object");
+  ProvenanceOutput out;
+  out.sources = optional_bool(o, "sources", false);
+  out.age = optional_bool(o, "age", false);
+  return out;
+}
+
 }  // namespace
 
 Output read_output(const json* v, const Scenario& scene, const std::filesystem::path& base_dir) {
   const std::string path = "/output";
-  const Object o(
-      v ? *v : empty_object(), path,
-      {"path", "times", "interval", "grid", "particles", "gauges", "series_interval", "wet_depth",
-       "depth_thresholds", "land_use", "start_time", "rasters", "raster_format", "tsunami"},
-      "an object");
+  const Object o(v ? *v : empty_object(), path,
+                 {"path", "times", "interval", "grid", "particles", "gauges", "series_interval",
+                  "wet_depth", "depth_thresholds", "land_use", "start_time", "rasters",
+                  "raster_format", "tsunami", "provenance"},
+                 "an object");
   Output out;
   out.path = read_output_path(o, scene.name, base_dir);
   out.times_s = read_times(o, scene.end_time_s);
@@ -332,6 +341,7 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
   out.tsunami = read_tsunami(o.find("tsunami"), o.path("tsunami"), scene, out.wet_depth_m);
   out.rasters = read_rasters(o, out.tsunami.has_value());
   out.raster_cog = choice(o, "raster_format", {"cog", "geotiff"}, "cog") == "cog";
+  out.provenance = read_provenance(o.find("provenance"), o.path("provenance"));
   return out;
 }
 

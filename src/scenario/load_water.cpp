@@ -123,7 +123,7 @@ ParsedWater read_water(const json& v, const std::string& path,
                        swe::SchemeKind scheme) {
   const Object o(
       v, path,
-      {"depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth", "velocity",
+      {"name", "depth", "fill", "surface_elevation", "depth_raster", "crs", "min_depth", "velocity",
        "surface_displacement", "solitary_wave", "spacing", "volumes", "rectangle", "polygon"},
       "an object describing a body of water");
   std::vector<std::string_view> forms;
@@ -140,6 +140,11 @@ ParsedWater read_water(const json& v, const std::string& path,
 
   ParsedWater parsed;
   WaterBody& w = parsed.body;
+  // The body's provenance label (docs/provenance.md); bodies that share a name share one.
+  w.name = optional_string(o, "name", "a non-empty string").value_or(WaterBody::kDefaultName);
+  if (w.name.empty()) {
+    throw ScenarioError(o.path("name"), describe(*o.find("name")), "a non-empty string");
+  }
   const std::string with_fill = "it goes with \"fill\"";
   const std::string with_raster = "it goes with \"depth_raster\"";
   if (form == "depth") {

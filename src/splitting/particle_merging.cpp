@@ -68,6 +68,7 @@ void ParticleMerging::apply(swe::StepContext& context) {
     const auto weighted = [&](const std::vector<double>& f) {
       return (va * f[a] + vb * f[b]) / volume;
     };
+    p.mix_provenance(a, va, b, vb);
     p.x[a] = weighted(p.x);
     p.y[a] = weighted(p.y);
     p.u[a] = weighted(p.u);

@@ -162,6 +162,7 @@ void ParticleSplitting::apply(swe::StepContext& context) {
     const double parent_radius = p.smoothing_length[i];
     const Daughter& b = plan.b;
     p.add_fluid(b.x, b.y, b.u, b.v, b.volume, b.depth, p.initial_area[i], p.bed[i]);
+    p.copy_provenance(i, p.fluid_count() - 1);
     p.area.back() = plan.area;
     p.smoothing_length.back() = parent_radius;
   }

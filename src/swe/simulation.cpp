@@ -100,10 +100,29 @@ Simulation::Simulation(particles::SweParticles fluid, Settings settings,
     throw std::invalid_argument("simulation: no water particles and nothing to add any");
   if (particles_.ghost_count() != 0)
     throw std::invalid_argument("simulation: ghosts in the initial state");
-  ledger_.initial_m3 = particles_.total_fluid_volume();
+  book_initial_volumes();
   for (std::size_t k = 0; k < effects_.size(); ++k) {
     if (effects_[k]->adds_ghosts()) ghost_effects_.push_back(k);
   }
+}
+
+void Simulation::book_initial_volumes() {
+  ledger_.initial_m3 = particles_.total_fluid_volume();
+  const std::size_t labels = particles_.label_count();
+  ledger_.label_initial_m3.assign(labels, 0.0);
+  ledger_.label_added_m3.assign(labels, 0.0);
+  ledger_.label_removed_m3.assign(labels, 0.0);
+  for (std::size_t k = 0; k < labels; ++k) {
+    ledger_.label_initial_m3[k] = particles_.label_volume(k);
+  }
+}
+
+double Simulation::relative_label_volume_change(std::size_t k) const {
+  const double reference = ledger_.label_initial_m3[k] + ledger_.label_added_m3[k];
+  if (!(reference > 0.0)) return 0.0;
+  const double expected =
+      ledger_.label_initial_m3[k] + ledger_.label_added_m3[k] - ledger_.label_removed_m3[k];
+  return (particles_.label_volume(k) - expected) / reference;
 }
 
 // Non-finite values are found in passes the step makes anyway; values derive from one
@@ -277,6 +296,16 @@ void Simulation::write_state(StateWriter& out) const {
     effect->save_state(effect_state);
     out.bytes(effect_state.bytes());
   }
+  // Provenance, when the scene tracks it (docs/provenance.md); a record without it is laid
+  // out as before.
+  if (p.label_count() > 0) {
+    out.numbers(std::span<const double>(p.label_share.data(), n * p.label_count()));
+    for (const auto* books :
+         {&ledger_.label_initial_m3, &ledger_.label_added_m3, &ledger_.label_removed_m3}) {
+      out.numbers(*books);
+    }
+  }
+  if (p.tracks_ages()) out.numbers(std::span<const double>(p.entry_time.data(), n));
 }
 
 void Simulation::restore_state(StateReader& in) {
@@ -330,6 +359,24 @@ void Simulation::load_state(StateReader& in) {
   }
 
   particles::SweParticles p;
+  const std::size_t labels = particles_.label_count();
+  p.track_provenance(labels, particles_.tracks_ages());
+  std::vector<double> label_share, entry_time;
+  std::array<std::vector<double>, 3> label_books;
+  if (labels > 0) {
+    label_share = in.numbers();
+    for (auto& books : label_books) books = in.numbers();
+    if (label_share.size() != n * labels || label_books[0].size() != labels ||
+        label_books[1].size() != labels || label_books[2].size() != labels) {
+      throw StateError(in.what() + " holds the shares of another number of provenance labels");
+    }
+  }
+  if (p.tracks_ages()) {
+    entry_time = in.numbers();
+    if (entry_time.size() != n) {
+      throw StateError(in.what() + " is damaged: entry times differ in length");
+    }
+  }
   const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density, smoothing, omega,
                listed] = fields;
   for (std::size_t i = 0; i < n; ++i) {
@@ -339,6 +386,8 @@ void Simulation::load_state(StateReader& in) {
   p.number_density = density;
   p.smoothing_length = smoothing;
   p.omega = omega;
+  if (labels > 0) p.label_share = std::move(label_share);
+  if (p.tracks_ages()) p.entry_time = std::move(entry_time);
   particles_ = std::move(p);
   listed_smoothing_length_ = listed;
   time_s_ = time_s;
@@ -347,6 +396,11 @@ void Simulation::load_state(StateReader& in) {
   wall_reflections_ = counts[2];
   last_sort_step_ = counts[3];
   sorted_count_ = counts[4];
+  if (labels > 0) {
+    ledger.label_initial_m3 = std::move(label_books[0]);
+    ledger.label_added_m3 = std::move(label_books[1]);
+    ledger.label_removed_m3 = std::move(label_books[2]);
+  }
   ledger_ = ledger;
   for (std::size_t k = 0; k < effects_.size(); ++k) {
     StateReader effect_in(effect_states[k],
@@ -422,7 +476,7 @@ VolumeBalanceReport Simulation::balance_volumes(std::vector<double> target_depth
   report.iterations = std::min(report.iterations, max_iterations);
   fresh_ = false;
   has_snapshot_ = false;  // the volumes changed: the next refresh takes a new one
-  ledger_.initial_m3 = particles_.total_fluid_volume();
+  book_initial_volumes();
   report.volume_after_m3 = ledger_.initial_m3;
   return report;
 }

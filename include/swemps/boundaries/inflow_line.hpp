@@ -34,6 +34,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -52,6 +53,7 @@ double critical_depth_m(double unit_discharge_m2_s, double gravity_m_s2);
 
 struct InflowLineSettings {
   std::string name = "inflow";        // for reports
+  std::uint32_t label = 0;            // the provenance label of its water (docs/provenance.md)
   std::array<double, 2> from{};       // m: the line the water crosses
   std::array<double, 2> to{};         // m
   std::array<double, 2> direction{};  // the way the water enters: normal to the line, any length

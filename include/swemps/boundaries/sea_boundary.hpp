@@ -67,6 +67,7 @@ class LevelSeries {
 
 struct SeaBoundarySettings {
   std::string name = "sea";         // for reports
+  std::uint32_t label = 0;          // the provenance label of its water (docs/provenance.md)
   std::array<double, 2> from{};     // m: the line
   std::array<double, 2> to{};       // m
   std::array<double, 2> outward{};  // normal to the line, out of the domain; any length

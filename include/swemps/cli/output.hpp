@@ -63,6 +63,9 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& output);
 struct GriddedState {
   std::span<const double> depth;  // m
   std::span<const double> u, v;   // m/s, depth-averaged; NaN where unknown
+  // Provenance, when the scene asks for it (maps::CellFields): per source, its water's depth;
+  // the mean time the water entered the domain. Empty otherwise.
+  std::span<const double> source_depth = {}, entry_time = {};
 };
 
 // The tsunami products of a finished result beside it (io/tsunami_products.hpp): the
@@ -129,6 +132,7 @@ class MapOutput {
   std::shared_ptr<const swe::BedSource> bed_;  // null: flat at z = 0
   std::vector<double> bed_m_;                  // at cell centres; 0 without a bed
   maps::FloodStatistics statistics_;
+  maps::ProvenanceMaxima provenance_;  // empty when the scene asks for no provenance
   std::unique_ptr<io::NetcdfWriter> writer_;
 };
 

@@ -56,6 +56,7 @@ constexpr double kMetresPerSecondPerMmPerHour = 1e-3 / 3600.0;
 
 struct RainSettings {
   std::string name = "rain";  // for reports
+  std::uint32_t label = 0;    // the provenance label of its water (docs/provenance.md)
   boundaries::Box domain{};   // the cells tile this box
   double spacing_m = 0.0;     // l: about the side of a cell
   // The rain falls on the cells whose centres lie inside this polygon (>= 3 vertices);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "swemps/maps/flood_statistics.hpp"
+#include "swemps/maps/provenance_maxima.hpp"
 #include "swemps/particles/swe_particles.hpp"
 
 namespace swemps::io {
@@ -64,6 +65,11 @@ struct Layout {
   // or the Navier-Stokes column of particles).
   std::string depth_long_name =
       "water depth: the particles' water in the cell over its area (cell average)";
+  // Provenance (docs/provenance.md): the names of the sources of the water, for maps, volume
+  // balances and gauge shares per source along a dimension `source` (empty: none); and whether
+  // the maps include the water's mean age.
+  std::vector<std::string> sources = {};
+  bool ages = false;
 };
 
 // Gridded fields of one output time: ny * nx values each, row-major with x fastest (index
@@ -72,6 +78,9 @@ struct MapFields {
   std::span<const double> depth;              // m
   std::span<const double> surface_elevation;  // m, bed + depth
   std::span<const double> u, v;               // m/s, depth-averaged velocity along x and y
+  // With provenance in the layout: per source, its water's depth (m) and its share of the
+  // cell's water (source k's map at [k * cells, (k + 1) * cells)); the water's mean age (s).
+  std::span<const double> source_depth = {}, source_share = {}, mean_age = {};
 };
 
 // One gauge at one series time; NaN where there is no value (dry, or outside the water).
@@ -79,6 +88,9 @@ struct GaugeSample {
   double depth_m = 0.0;
   double u_m_s = 0.0, v_m_s = 0.0;
   double surface_m = std::numeric_limits<double>::quiet_NaN();  // bed + depth; NaN where dry
+  // With sources in the layout: the share of each source in the water at the gauge (NaN where
+  // dry), one per source.
+  std::vector<double> source_share = {};
 };
 
 // Volume balance at one series time.
@@ -90,6 +102,10 @@ struct BalanceSample {
   // (in_domain - (initial + inflow + rain - outflow)) / reference volume, computed by the
   // caller.
   double relative_error = 0.0;
+  // With sources in the layout, one value per source: its water in the domain, what came in
+  // after the start (inflow and rain), what left, and its relative balance error.
+  std::span<const double> source_in_domain_m3 = {}, source_inflow_m3 = {}, source_outflow_m3 = {},
+                          source_relative_error = {};
 };
 
 // How much of a file has been written: where a resumed writer goes on.
@@ -107,6 +123,9 @@ struct NetcdfIds {
   int count = -1, px = -1, py = -1, pu = -1, pv = -1, ph = -1, pvol = -1, parea = -1;
   int series_time = -1, gauge_depth = -1, gauge_surface = -1, gauge_u = -1, gauge_v = -1;
   int in_domain = -1, inflow = -1, rain = -1, outflow = -1, error = -1;
+  int source_depth = -1, source_share = -1, mean_age = -1;
+  int source_in_domain = -1, source_inflow = -1, source_outflow = -1, source_error = -1;
+  int gauge_source_share = -1;
 };
 }  // namespace detail
 
@@ -145,6 +164,9 @@ class NetcdfWriter {
   // The whole-run summary maps; at most once, before finish(). The statistics must cover
   // the grid's cells.
   void write_summary(const maps::FloodStatistics& stats);
+  // The whole-run maxima of the provenance maps (layout sources and ages), with the summary;
+  // rewritten by each call (a run that stops, goes on and finishes).
+  void write_provenance_summary(const maps::ProvenanceMaxima& maxima);
 
   // The global attributes run_status ("complete", "interrupted", "breakdown", "failed")
   // and, unless empty, run_status_message; rewritten by each call.
@@ -173,6 +195,8 @@ class NetcdfWriter {
   void require_grid_sized(std::span<const double> field, const char* caller,
                           const char* name) const;
   void write_maps(double time_s, const MapFields& fields);
+  void write_provenance_maps(const MapFields& fields);
+  void write_provenance_series(std::span<const GaugeSample> gauges, const BalanceSample& balance);
 
   std::filesystem::path path_, partial_path_;
   int ncid_ = -1;

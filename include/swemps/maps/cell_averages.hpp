@@ -42,6 +42,10 @@ namespace swemps::maps {
 // level). u, v and the surface are NaN in a cell without water.
 struct CellFields {
   std::vector<double> depth, u, v, surface;
+  // Provenance, when the particles track it (docs/provenance.md); empty otherwise. Per label,
+  // the depth of that label's water (label k's map is label_depth[k * cells, (k + 1) * cells));
+  // the volume-weighted mean time the cell's water entered the domain (s; NaN without water).
+  std::vector<double> label_depth = {}, entry_time = {};
 };
 
 // The domain: sub-points outside it take no share, and the kernel is mirrored at its edges.
@@ -127,6 +131,12 @@ class CellAverages {
     }
   }
   double sub_bed(long si, long sk) const;
+  // Particle j's shares list[first, end) added to the provenance maps of `out` (volumes of
+  // each label, and volumes times entry times, until fields() divides them).
+  static void add_provenance(const particles::SweParticles& p, std::size_t j,
+                             const std::vector<Share>& list, std::size_t first, std::size_t end,
+                             CellFields& out);
+  static std::size_t grid_cells(const CellFields& out) { return out.depth.size(); }
 
   swe::RegularGrid grid_;
   std::shared_ptr<const swe::BedSource> bed_;

@@ -10,6 +10,14 @@
 
 namespace swemps::particles {
 
+// Where a new particle's water comes from (docs/provenance.md): the label of its source (a
+// water body, an inflow, a sea boundary, rain) and when it entered the domain. Kept only by
+// particles that track provenance (SweParticles::track_provenance); ignored otherwise.
+struct Origin {
+  std::uint32_t label = 0;
+  double entry_time_s = 0.0;
+};
+
 class SweParticles {
  public:
   // Per-particle fields. Units: m, m/s, m^3, m, m^2.
@@ -30,13 +38,23 @@ class SweParticles {
   // For ghosts: the fluid particle mirrored; for fluid particles: its own index.
   std::vector<std::uint32_t> source;
 
+  // Provenance (docs/provenance.md), for fluid particles only and empty unless tracked: the
+  // share of each particle's volume that came from each of label_count() labels (particle i's
+  // shares are label_share[i * label_count(), (i + 1) * label_count())), and the volume-weighted
+  // mean time its water entered the domain (s). A share is a fraction, not a volume, so that
+  // every change of a particle's volume that is not a mixing of water (the volume balance at
+  // rest, losses) leaves it alone, and splitting copies it.
+  std::vector<double> label_share;
+  std::vector<double> entry_time;
+
   std::size_t size() const { return x.size(); }
   std::size_t fluid_count() const { return fluid_count_; }
   std::size_t ghost_count() const { return size() - fluid_count_; }
 
-  // Appends a fluid particle (only while there are no ghosts).
+  // Appends a fluid particle (only while there are no ghosts); `origin` is kept when provenance
+  // is tracked.
   void add_fluid(double px, double py, double pu, double pv, double vol, double h, double a0,
-                 double zb);
+                 double zb, Origin origin = {});
   // Appends a ghost copying every field of fluid particle `from`, then overriding position
   // and velocity.
   void add_ghost(std::uint32_t from, double px, double py, double pu, double pv);
@@ -55,10 +73,30 @@ class SweParticles {
 
   double total_fluid_volume() const;  // summed in index order: reproducible
 
+  // Provenance. track_provenance() starts keeping `labels` shares (0: none) and, with `ages`,
+  // entry times; only while there are no particles. Each is then carried through add_fluid,
+  // reorder and remove, and mixed by the calls below; untracked, they cost nothing.
+  void track_provenance(std::size_t labels, bool ages);
+  std::size_t label_count() const { return label_count_; }
+  bool tracks_ages() const { return tracks_ages_; }
+  // Fluid particle `to` takes the shares and entry time of `from` (a daughter of a split).
+  void copy_provenance(std::size_t from, std::size_t to);
+  // Fluid particle `a`, of volume `volume_a`, takes in the water of `b`, of volume `volume_b`:
+  // shares and entry times mixed by volume, so that each label's volume is kept (a merge).
+  // Call before the volumes change.
+  void mix_provenance(std::size_t a, double volume_a, std::size_t b, double volume_b);
+  // `added_m3` of water from `origin` joins fluid particle i, of volume `volume_m3` before it
+  // (rain falling on water). Call before the volume changes.
+  void mix_in(std::size_t i, double volume_m3, double added_m3, Origin origin);
+  // The fluid particles' volume of label k, summed in index order.
+  double label_volume(std::size_t k) const;
+
  private:
   void resize(std::size_t n);
   std::size_t fluid_count_ = 0;
   std::size_t mirror_end_ = 0;
+  std::size_t label_count_ = 0;
+  bool tracks_ages_ = false;
   bool mirrors_closed_ = false;
 };
 

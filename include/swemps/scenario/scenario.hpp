@@ -4,6 +4,7 @@
 // tables) are only named here; build reads them.
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -86,6 +87,9 @@ enum class VolumeRule {
 
 // A body of water, filled with particles on a square lattice of the given spacing.
 struct WaterBody {
+  // Its water's provenance label (docs/provenance.md): bodies with one name share one label.
+  std::string name = kDefaultName;
+  static constexpr const char* kDefaultName = "water";
   // Counter-clockwise or clockwise, not closed, >= 3 vertices (a rectangle is stored as its
   // 4 corners). Empty only for a depth raster without a shape: then the whole domain.
   std::vector<Point> polygon;
@@ -242,6 +246,18 @@ struct TsunamiOutput {
   VectorFormat inundation_line = VectorFormat::gpkg;
 };
 
+// What a run writes of where its water came from and how long it has been in the domain
+// (docs/provenance.md). Nothing of it is kept, or costs anything, unless asked for.
+struct ProvenanceOutput {
+  // Per provenance label (provenance_labels()): its water's depth and share of the depth at
+  // output times and their whole-run maxima, its volume balance, and its share at each gauge.
+  bool sources = false;
+  // The volume-weighted mean age of the water (time since it entered the domain) at output
+  // times, and its whole-run maximum.
+  bool age = false;
+  bool any() const { return sources || age; }
+};
+
 struct Output {
   std::filesystem::path path;   // absolute once loaded
   std::vector<double> times_s;  // sorted, unique, in (0, end_time]; t = 0 is always written too
@@ -264,6 +280,7 @@ struct Output {
   std::vector<std::string> rasters;
   bool raster_cog = true;
   std::optional<TsunamiOutput> tsunami;  // absent: none of the tsunami products
+  ProvenanceOutput provenance;
 };
 
 // An earthquake's rectangular fault planes (tsunami/okada.hpp): the floor's vertical
@@ -350,6 +367,13 @@ class ScenarioError : public std::runtime_error {
 // key or a file name) are written as escapes such as \n or \x1b, and bytes that are not UTF-8
 // as \xff, so that a message stays one line and cannot drive the terminal.
 std::string printable_line(std::string_view text);
+
+// The provenance labels of the scene's water (docs/provenance.md): one per name of a source, in
+// the order the scene gives them: water bodies, inflows, sea boundaries, rain. Sources that
+// share a name share a label (two bodies named "lake"; bodies without a name are "water").
+std::vector<std::string> provenance_labels(const Scenario& scene);
+// The index of `name` in provenance_labels(scene); std::out_of_range when no source has it.
+std::uint32_t provenance_label(const Scenario& scene, const std::string& name);
 
 // Reads and validates a scenario file. Relative paths inside it are taken relative to the
 // file's folder. Throws ScenarioError (file unreadable, syntax, unknown key, bad value).

@@ -26,6 +26,22 @@ struct VolumeLedger {
   double rain_m3 = 0.0;     // rain that reached the water (after its losses)
   double removed_m3 = 0.0;  // e.g. outflow, particles leaving the domain
   double expected_m3() const { return initial_m3 + added_m3 + rain_m3 - removed_m3; }
+
+  // The same per provenance label (SweParticles::label_share), when the particles track it;
+  // empty otherwise. A label's water comes in once, from its one kind of source (added counts
+  // inflow and rain alike), and leaves wherever the water goes.
+  std::vector<double> label_initial_m3, label_added_m3, label_removed_m3;
+  // Books `m3` of new water of label k (nothing when labels are not tracked).
+  void add_to_label(std::size_t k, double m3) {
+    if (!label_added_m3.empty()) label_added_m3[k] += m3;
+  }
+  // Books fluid particle i of `p` as removed, share by share.
+  void remove_labelled(const particles::SweParticles& p, std::size_t i) {
+    const std::size_t labels = label_removed_m3.size();
+    for (std::size_t k = 0; k < labels; ++k) {
+      label_removed_m3[k] += p.volume[i] * p.label_share[i * labels + k];
+    }
+  }
 };
 
 // Where in the step an effect acts (the step order is documented in simulation.hpp).

@@ -155,6 +155,10 @@ class Simulation {
   double fluid_volume() const { return particles_.total_fluid_volume(); }
   // (V - expected) / (V_initial + V_added): zero up to round-off when volume is conserved.
   double relative_volume_change() const;
+  // The same for the water of provenance label k (particles().label_count() > 0): what the
+  // particles hold of it against what came in less what left, over all that came in (0 for a
+  // label that has brought no water yet).
+  double relative_label_volume_change(std::size_t k) const;
   std::size_t wall_reflections() const { return wall_reflections_; }
   const PhaseTimes& phase_times() const { return phase_times_; }
   const SearchCounts& search_counts() const { return search_counts_; }
@@ -218,6 +222,8 @@ class Simulation {
   // when there is no snapshot.
   bool roll_back();
   void keep_snapshot();
+  // The ledger's initial volumes (per provenance label too) from the particles as they are.
+  void book_initial_volumes();
   void write_state(StateWriter& out) const;
   void load_state(StateReader& in);
   void rebuild_neighborhood();
