@@ -293,11 +293,13 @@ CellFields CellAverages::fields(const particles::SweParticles& p,
   const std::size_t cells = grid_.nx * grid_.ny;
   CellFields out{std::vector<double>(cells, 0.0), std::vector<double>(cells, kNaN),
                  std::vector<double>(cells, kNaN), std::vector<double>(cells, kNaN)};
+  const std::size_t labels = p.label_count();
+  if (labels > 0) out.label_depth.assign(labels * cells, 0.0);
+  if (p.tracks_ages()) out.entry_time.assign(cells, kNaN);
   const std::size_t n = p.fluid_count();
   if (n == 0 || cells == 0) return out;
   std::vector<double> qx(cells, 0.0), qy(cells, 0.0), volume_surface(cells, 0.0);
-  const std::size_t labels = p.label_count();
-  if (labels > 0) out.label_depth.assign(labels * cells, 0.0);
+  // Volumes times entry times until they are divided by the volumes below.
   if (p.tracks_ages()) out.entry_time.assign(cells, 0.0);
   // Blocks of particles find their shares in parallel, each into its own list with the
   // particles' ranges in it; the lists are then added in particle order, so that the maps do

@@ -346,3 +346,26 @@ TEST_CASE("provenance is refused where it cannot be kept", "[provenance]") {
   })");
   CHECK(error_at(tank) == "/output/provenance");
 }
+
+TEST_CASE("a scene that starts dry writes its provenance from its first water on",
+          "[provenance][cli]") {
+  swemps::testing::TempDir dir("provenance");
+  json scene = two_lane_channel();
+  scene.erase("water");
+  scene["end_time"] = 2;
+  scene["output"]["interval"] = 1;
+  std::ofstream(dir.path() / "dry.json") << scene.dump(2);
+  const auto run = swemps::testing::run_command(std::string(SWEMPS_CLI) + " run -q " +
+                                                (dir.path() / "dry.json").string());
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  int nc = -1;
+  REQUIRE(nc_open((dir.path() / "lanes.nc").c_str(), NC_NOWRITE, &nc) == NC_NOERR);
+  const auto age = swemps::testing::whole_variable(nc, "mean_age");
+  const auto depth = swemps::testing::whole_variable(nc, "source_depth");
+  nc_close(nc);
+  // At t = 0 the map is dry: no age, no source's water anywhere.
+  const std::size_t cells = 40 * 10;
+  for (std::size_t c = 0; c < cells; ++c) CHECK(age[c] == NC_FILL_FLOAT);
+  for (std::size_t k = 0; k < 3 * cells; ++k) CHECK(depth[k] == 0.0);
+}
