@@ -46,8 +46,10 @@ def axes_km(ds):
 
 
 def draw_map(ds, field, title, label, cmap, vmax, out):
-    fig, ax = plt.subplots(figsize=(7.5, 6.5))
     extent = axes_km(ds)
+    # As tall as the domain is for its width: a flume is a strip, a valley a square.
+    aspect = (extent[3] - extent[2]) / (extent[1] - extent[0])
+    fig, ax = plt.subplots(figsize=(8.0, max(2.6, 6.8 * aspect) + 0.8))
     if "bed_elevation" in ds.variables:
         dx = float(ds["x"][1] - ds["x"][0])
         bed = np.ma.filled(ds["bed_elevation"][:].astype(float), np.nan)
@@ -55,7 +57,7 @@ def draw_map(ds, field, title, label, cmap, vmax, out):
                   vmax=1.2)
     image = ax.imshow(np.ma.masked_invalid(field), origin="lower", extent=extent, cmap=cmap,
                       vmin=0, vmax=vmax, alpha=0.85)
-    fig.colorbar(image, ax=ax, shrink=0.8, label=label)
+    fig.colorbar(image, ax=ax, shrink=0.9 if aspect < 0.5 else 0.8, label=label)
     ax.set_xlabel("x (km)")
     ax.set_ylabel("y (km)")
     ax.set_title(title)

@@ -96,6 +96,22 @@ std::vector<std::filesystem::path> export_maps(const std::filesystem::path& resu
       write(name, values, band);
       continue;
     }
+    if (maps::is_source_map(name)) {
+      // One map per source of the water, named by the source (docs/provenance.md).
+      const std::vector<std::string> sources = in.strings("source_name");
+      if (values.size() != sources.size() * cells) {
+        throw std::runtime_error("the result " + quoted(result) + " has " +
+                                 std::to_string(values.size()) + " values of " + name +
+                                 ", not one map per source");
+      }
+      for (std::size_t k = 0; k < sources.size(); ++k) {
+        RasterBand layer = band;
+        layer.description += ", source '" + sources[k] + "'";
+        write(name + "_" + column_name(sources[k]),
+              std::span<const double>(values).subspan(k * cells, cells), layer);
+      }
+      continue;
+    }
     // One map per depth threshold.
     const std::vector<double> thresholds = in.values("depth_threshold");
     if (values.size() != thresholds.size() * cells) {
@@ -142,6 +158,22 @@ bool export_gauges(const std::filesystem::path& result, const std::filesystem::p
     }
   }
 
+  // With provenance sources, each source's share of the water at each gauge (docs/provenance.md).
+  std::vector<std::string> sources;
+  std::vector<double> shares;
+  if (in.has("gauge_source_share")) {
+    sources = in.strings("source_name");
+    shares = in.values("gauge_source_share");
+    if (shares.size() != time.size() * n * sources.size()) {
+      throw std::runtime_error("the result " + quoted(result) + " has " +
+                               std::to_string(shares.size()) +
+                               " values of gauge_source_share for " + std::to_string(time.size()) +
+                               " times, " + std::to_string(n) + " gauges and " +
+                               std::to_string(sources.size()) + " sources");
+    }
+  }
+  const std::size_t s = sources.size();
+
   std::string text = "time_s";
   for (const auto& g : gauges) {
     for (const char* unit : units) {
@@ -151,6 +183,12 @@ bool export_gauges(const std::filesystem::path& result, const std::filesystem::p
       text += '_';
       text += unit;
     }
+    for (const auto& source : sources) {
+      text += ',';
+      text += column_name(g);
+      text += "_share_";
+      text += column_name(source);
+    }
   }
   text += '\n';
   for (std::size_t t = 0; t < time.size(); ++t) {
@@ -159,6 +197,7 @@ bool export_gauges(const std::filesystem::path& result, const std::filesystem::p
     text += stamp;
     for (std::size_t g = 0; g < n; ++g) {
       for (const auto& column : columns) text::append_cell(text, column[t * n + g]);
+      for (std::size_t k = 0; k < s; ++k) text::append_cell(text, shares[(t * n + g) * s + k]);
     }
     text += '\n';
   }

@@ -14,6 +14,7 @@
 #include "load_sections.hpp"
 #include "swemps/io/cf_time.hpp"
 #include "swemps/maps/flood_statistics.hpp"
+#include "swemps/maps/provenance_maxima.hpp"
 #include "swemps/scenario/scenario.hpp"
 
 namespace swemps::scenario {
@@ -271,12 +272,16 @@ std::optional<TsunamiOutput> read_tsunami(const json* v, const std::string& path
   return out;
 }
 
-// "all", or a list of the maps to write as GeoTIFF; the tsunami maps only with `tsunami`.
-std::vector<std::string> read_rasters(const Object& o, bool tsunami) {
+// "all", or a list of the maps to write as GeoTIFF; the tsunami maps only with `tsunami`, the
+// provenance maps only with the provenance they map.
+std::vector<std::string> read_rasters(const Object& o, bool tsunami,
+                                      const ProvenanceOutput& provenance) {
   const json* v = o.find("rasters");
   if (v == nullptr) return {};
   std::vector<std::string> known = maps::summary_map_names();
   if (!tsunami) std::erase_if(known, maps::is_tsunami_map);
+  if (provenance.sources) known.insert(known.end(), {"max_source_depth", "max_source_share"});
+  if (provenance.age) known.push_back("max_mean_age");
   const Names choices(known.begin(), known.end());
   const std::string path = o.path("rasters");
   if (v->is_string() && v->get_ref<const std::string&>() == "all") return known;
@@ -339,9 +344,9 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
     out.start_time_units = units;
   }
   out.tsunami = read_tsunami(o.find("tsunami"), o.path("tsunami"), scene, out.wet_depth_m);
-  out.rasters = read_rasters(o, out.tsunami.has_value());
-  out.raster_cog = choice(o, "raster_format", {"cog", "geotiff"}, "cog") == "cog";
   out.provenance = read_provenance(o.find("provenance"), o.path("provenance"));
+  out.rasters = read_rasters(o, out.tsunami.has_value(), out.provenance);
+  out.raster_cog = choice(o, "raster_format", {"cog", "geotiff"}, "cog") == "cog";
   return out;
 }
 

@@ -229,7 +229,9 @@ TEST_CASE("provenance survives a restart bit for bit", "[provenance]") {
 TEST_CASE("a run writes each source's maps, balance and gauge shares, and the water's age",
           "[provenance][cli]") {
   swemps::testing::TempDir dir("provenance");
-  std::ofstream(dir.path() / "lanes.json") << two_lane_channel().dump(2);
+  json scene = two_lane_channel();
+  scene["output"]["rasters"] = {"max_source_share", "max_mean_age"};
+  std::ofstream(dir.path() / "lanes.json") << scene.dump(2);
   const auto run = swemps::testing::run_command(std::string(SWEMPS_CLI) + " run -q " +
                                                 (dir.path() / "lanes.json").string());
   INFO(run.output);
@@ -319,6 +321,19 @@ TEST_CASE("a run writes each source's maps, balance and gauge shares, and the wa
   INFO(info.output);
   CHECK(info.status == 0);
   CHECK_THAT(info.output, Contains("NETCDF_DIM_source=4"));
+
+  // The maxima as GeoTIFF, one per source; each source's share in the gauge table.
+  for (const char* tif : {"lanes_max_source_share_north_lake.tif",
+                          "lanes_max_source_share_storm.tif", "lanes_max_mean_age.tif"}) {
+    INFO(tif);
+    CHECK(std::filesystem::exists(dir.path() / tif));
+  }
+  CHECK_FALSE(std::filesystem::exists(dir.path() / "lanes_max_source_depth_storm.tif"));
+  std::ifstream csv(dir.path() / "lanes_gauges.csv");
+  std::string header;
+  std::getline(csv, header);
+  CHECK_THAT(header, Contains("north_v_m_s,north_share_north_lake,north_share_south_lake,"));
+  CHECK_THAT(header, Contains("dry_share_storm"));
 }
 
 TEST_CASE("provenance is refused where it cannot be kept", "[provenance]") {

@@ -6,9 +6,23 @@
 
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace swemps::maps {
+
+// The maxima by the names a result's file gives them, which output.rasters and `swe-mps export`
+// may ask for besides maps::summary_map_names(): max_source_depth and max_source_share hold one
+// map per source.
+inline const std::vector<std::string>& provenance_map_names() {
+  static const std::vector<std::string> names{"max_source_depth", "max_source_share",
+                                              "max_mean_age"};
+  return names;
+}
+// The maps only a result with provenance sources has, one per source.
+inline bool is_source_map(const std::string& name) {
+  return name == "max_source_depth" || name == "max_source_share";
+}
 
 class ProvenanceMaxima {
  public:
