@@ -182,7 +182,7 @@ void MapOutput::write_maps(double time_s, const GriddedState& state,
 
 void MapOutput::update_statistics(double time_s, const GriddedState& state) {
   statistics_.update(time_s, state.depth, state.u, state.v);
-  if (provenance_.sources() > 0 || provenance_.ages()) {
+  if (provenance_.kept()) {
     provenance_.update(time_s, state.depth, state.source_depth, state.entry_time);
   }
 }
@@ -251,7 +251,7 @@ void MapOutput::save_state(swe::StateWriter& out) const {
   out.number(statistics_.last_time());
   for (const auto map : statistics_.maps()) out.numbers(map);
   // Only with provenance: a record without it is laid out as before.
-  if (provenance_.sources() > 0 || provenance_.ages()) {
+  if (provenance_.kept()) {
     for (const auto map : provenance_.maps()) out.numbers(map);
   }
 }
@@ -272,7 +272,7 @@ void MapOutput::restore_statistics(swe::StateReader& in) {
   for (std::size_t k = 0; k < statistics_.maps().size(); ++k) maps.push_back(in.numbers());
   try {
     statistics_.restore(samples, last_time_s, std::move(maps));
-    if (provenance_.sources() > 0 || provenance_.ages()) {
+    if (provenance_.kept()) {
       std::vector<std::vector<double>> maxima;
       for (std::size_t k = 0; k < provenance_.maps().size(); ++k) maxima.push_back(in.numbers());
       provenance_.restore(std::move(maxima));

@@ -103,6 +103,7 @@ class SweOutput {
     const auto start = Clock::now();
     sim.refresh();
     std::vector<io::GaugeSample> at_gauges;
+    const std::size_t labels = sim.particles().label_count();
     for (std::size_t k = 0; k < gauges_.size(); ++k) {
       // The level of the water in the cell around the gauge less the bed at its point
       // (maps::gauge_reader, CellAverages::level).
@@ -113,15 +114,13 @@ class SweOutput {
       at_gauges.push_back({depth, wet ? around.u.front() : kNaN, wet ? around.v.front() : kNaN,
                            wet ? surface : kNaN});
       // The shares of the water in the gauge's cell (its volume is its depth there).
-      const std::size_t labels = sim.particles().label_count();
-      for (std::size_t k = 0; k < labels; ++k) {
-        const double cell_depth = around.depth.front();
+      const double cell_depth = around.depth.front();
+      for (std::size_t label = 0; label < labels; ++label) {
         at_gauges.back().source_share.push_back(
-            wet && cell_depth > 0.0 ? around.label_depth[k] / cell_depth : kNaN);
+            wet && cell_depth > 0.0 ? around.label_depth[label] / cell_depth : kNaN);
       }
     }
     const auto& ledger = sim.ledger();
-    const std::size_t labels = sim.particles().label_count();
     std::vector<double> label_volume(labels), label_error(labels);
     for (std::size_t k = 0; k < labels; ++k) {
       label_volume[k] = sim.particles().label_volume(k);

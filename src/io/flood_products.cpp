@@ -79,6 +79,26 @@ std::vector<std::filesystem::path> export_maps(const std::filesystem::path& resu
     write_geotiff(file, grid, values, band, layout, metadata);
     written.push_back(file);
   };
+  // A map of several layers (one per depth threshold, or per source), each written alone as
+  // <prefix>_<name>_<file part>.tif, its band described with the layer's own words.
+  struct Layer {
+    std::string file_part, description;
+  };
+  const auto write_layers = [&](const std::string& name, const std::vector<double>& values,
+                                const RasterBand& band, const std::vector<Layer>& layers,
+                                const std::string& kind) {
+    if (values.size() != layers.size() * cells) {
+      throw std::runtime_error("the result " + quoted(result) + " has " +
+                               std::to_string(values.size()) + " values of " + name +
+                               ", not one map per " + kind);
+    }
+    for (std::size_t j = 0; j < layers.size(); ++j) {
+      RasterBand layer = band;
+      layer.description += layers[j].description;
+      write(name + "_" + layers[j].file_part,
+            std::span<const double>(values).subspan(j * cells, cells), layer);
+    }
+  };
   for (const std::string& name : names.empty() ? known : names) {
     if (!in.has(name.c_str())) continue;  // bed_elevation of a flat scene
     const int id = in.variable(name.c_str());
@@ -98,33 +118,19 @@ std::vector<std::filesystem::path> export_maps(const std::filesystem::path& resu
     }
     if (maps::is_source_map(name)) {
       // One map per source of the water, named by the source (docs/provenance.md).
-      const std::vector<std::string> sources = in.strings("source_name");
-      if (values.size() != sources.size() * cells) {
-        throw std::runtime_error("the result " + quoted(result) + " has " +
-                                 std::to_string(values.size()) + " values of " + name +
-                                 ", not one map per source");
+      std::vector<Layer> sources;
+      for (const std::string& source : in.strings("source_name")) {
+        sources.push_back({column_name(source), ", source '" + source + "'"});
       }
-      for (std::size_t k = 0; k < sources.size(); ++k) {
-        RasterBand layer = band;
-        layer.description += ", source '" + sources[k] + "'";
-        write(name + "_" + column_name(sources[k]),
-              std::span<const double>(values).subspan(k * cells, cells), layer);
-      }
+      write_layers(name, values, band, sources, "source");
       continue;
     }
-    // One map per depth threshold.
-    const std::vector<double> thresholds = in.values("depth_threshold");
-    if (values.size() != thresholds.size() * cells) {
-      throw std::runtime_error("the result " + quoted(result) + " has " +
-                               std::to_string(values.size()) + " values of " + name +
-                               ", not one map per depth threshold");
+    std::vector<Layer> thresholds;
+    for (const double t : in.values("depth_threshold")) {
+      thresholds.push_back(
+          {threshold_text(t) + "m", ", depth threshold " + threshold_text(t) + " m"});
     }
-    for (std::size_t j = 0; j < thresholds.size(); ++j) {
-      RasterBand layer = band;
-      layer.description += ", depth threshold " + threshold_text(thresholds[j]) + " m";
-      write(name + "_" + threshold_text(thresholds[j]) + "m",
-            std::span<const double>(values).subspan(j * cells, cells), layer);
-    }
+    write_layers(name, values, band, thresholds, "depth threshold");
   }
   return written;
 }
@@ -165,11 +171,10 @@ bool export_gauges(const std::filesystem::path& result, const std::filesystem::p
     sources = in.strings("source_name");
     shares = in.values("gauge_source_share");
     if (shares.size() != time.size() * n * sources.size()) {
-      throw std::runtime_error("the result " + quoted(result) + " has " +
-                               std::to_string(shares.size()) +
-                               " values of gauge_source_share for " + std::to_string(time.size()) +
-                               " times, " + std::to_string(n) + " gauges and " +
-                               std::to_string(sources.size()) + " sources");
+      throw std::runtime_error(
+          "the result " + quoted(result) + " has " + std::to_string(shares.size()) +
+          " values of gauge_source_share for " + std::to_string(time.size()) + " times, " +
+          std::to_string(n) + " gauges and " + std::to_string(sources.size()) + " sources");
     }
   }
   const std::size_t s = sources.size();

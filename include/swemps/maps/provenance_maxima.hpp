@@ -41,6 +41,7 @@ class ProvenanceMaxima {
   std::span<const double> max_mean_age() const { return max_mean_age_; }
   std::size_t sources() const { return sources_; }
   bool ages() const { return ages_; }
+  bool kept() const { return sources_ > 0 || ages_; }  // anything at all
 
   // For a checkpoint: every map, in the order restore() takes them.
   std::vector<std::span<const double>> maps() const;
