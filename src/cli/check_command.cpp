@@ -32,6 +32,7 @@
 #include "swemps/cli/wall_time_estimate.hpp"
 #include "swemps/io/hydrograph_csv.hpp"
 #include "swemps/maps/flood_statistics.hpp"
+#include "swemps/maps/pathlines.hpp"
 #include "swemps/scenario/build.hpp"
 #include "swemps/scenario/coarsen.hpp"
 #include "swemps/scenario/memory_check.hpp"
@@ -471,6 +472,25 @@ void buildings_rows(const scenario::Scenario& scene, const scenario::Terrain& te
   }
 }
 
+// The pathlines: how many particles a run starting now would follow, and where they go.
+void pathlines_rows(const scenario::Scenario& scene, const scenario::Terrain& terrain,
+                    const particles::SweParticles& p) {
+  if (!scene.output.pathlines) return;
+  const auto& spec = *scene.output.pathlines;
+  std::string chosen = fmt::format("chosen at t = {} s", num(spec.start_s));
+  if (spec.start_s == 0.0) {
+    maps::PathlineChoice choice;
+    choice.count = spec.count;
+    if (spec.source) choice.label = scenario::provenance_label(scene, *spec.source);
+    choice.area = terrain.pathline_area.get();
+    const std::size_t n = maps::choose_pathline_particles(p, choice).size();
+    chosen = n == 0 ? "none of the starting particles passes the filters"
+                    : count(double(n)) + " particles, chosen at the start";
+  }
+  row("pathlines", fmt::format("{}, a vertex every {} s, to {}", chosen, num(spec.interval_s),
+                               spec.file(scene.output.path).string()));
+}
+
 // What a run does at each sample of its flood statistics: grid the state and add it to the
 // statistics (maps and series are written at their times only, and left out). Timed on the
 // state the scene's window reached, the faster of two (the first pays for allocations); the
@@ -556,6 +576,7 @@ void check_swe(const scenario::Scenario& scene, const Options& options) {
   const double start = static_cast<double>(sim.particles().fluid_count());
   const double inflow_particles = particles_section(scene, sim);
   buildings_rows(scene, built.terrain);
+  pathlines_rows(scene, built.terrain, sim.particles());
   // The need counts the particles at the start; those inflows let in come on top.
   memory_section(scenario::swe_memory_need(scene, built.terrain),
                  inflow_particles > 0.0 ? "; not counting the " + count(inflow_particles) +

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "swemps/cli/pathline_output.hpp"
 #include "swemps/cli/progress.hpp"
 #include "swemps/cli/restart.hpp"
 #include "swemps/cli/runs.hpp"
@@ -252,9 +253,10 @@ class RunState {
   }
   double next_sample_s() const { return next_sample_s_; }
   const io::WriterPosition& position() const { return position_; }
-  // The rest of the record: the flood statistics.
-  void restore_statistics(SweOutput& output) {
+  // The rest of the record: the flood statistics, and the pathlines when the scene has them.
+  void restore_statistics(SweOutput& output, PathlineOutput* pathlines) {
     output.restore_statistics(in_);
+    if (pathlines) pathlines->restore_state(in_);
     in_.expect_end();
   }
 
@@ -264,11 +266,13 @@ class RunState {
   io::WriterPosition position_;
 };
 
-std::vector<std::byte> run_state(const SweOutput& output, double next_sample_s) {
+std::vector<std::byte> run_state(const SweOutput& output, const PathlineOutput* pathlines,
+                                 double next_sample_s) {
   swe::StateWriter out;
   out.text(kRunStateLabel);
   out.number(next_sample_s);
   output.save_state(out);
+  if (pathlines) pathlines->save_state(out);
   return {out.bytes().begin(), out.bytes().end()};
 }
 
@@ -412,11 +416,14 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     }
   }
   SweOutput output(scene, built.terrain, grid, context, resume_at);
+  std::optional<PathlineOutput> pathlines;
+  if (scene.output.pathlines) pathlines.emplace(scene, built.terrain);
+  PathlineOutput* const followed = pathlines ? &*pathlines : nullptr;
   const double interval = scene.output.series_interval_s;
   double next_sample = next_sample_time(0.0, interval);
   if (resumed) {
     try {
-      resumed->restore_statistics(output);
+      resumed->restore_statistics(output, followed);
     } catch (const swe::StateError& e) {
       throw io::CheckpointError(e.what());
     }
@@ -426,6 +433,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     output.write_maps(sim);
     output.update_statistics(sim);
     output.sample(sim);
+    if (pathlines) pathlines->observe(sim);
   }
   // The depths the front is read from are those the next step uses (refresh() is cached).
   const auto observe = [&] {
@@ -440,6 +448,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     progress.update(sim.time(), sim.steps(), sim.particles().fluid_count());
     observe();
     output.update_statistics(sim);
+    if (pathlines) pathlines->observe(sim);
     if (sim.time() < next_sample * (1.0 - 1e-12)) return;
     output.sample(sim);
     next_sample = next_sample_time(sim.time(), interval);
@@ -453,7 +462,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     swe::StateWriter state;
     sim.save_state(state);
     write_run_checkpoint(checkpoint_file, scenario_hash, sim.time(), sim.steps(), state.bytes(),
-                         run_state(output, next_sample), checkpoint_start);
+                         run_state(output, followed, next_sample), checkpoint_start);
   };
   // A run that stops early: the state it stopped at as a last map record (the state a
   // breakdown went back to is the last good one), a checkpoint, then the file closed as
@@ -463,6 +472,8 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
     if (state_kept) output.write_maps(sim);
     if (state_kept && context.checkpoints) write_checkpoint();
     output.close_stopped(status, message);
+    std::optional<std::filesystem::path> stopped_pathlines;
+    if (pathlines) stopped_pathlines = pathlines->close_stopped(state_kept ? &sim : nullptr);
     progress.finish();
     log_summary(sim,
                 status == "breakdown" ? "broke down"
@@ -470,9 +481,11 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
                                       : "stopped",
                 initial_particles, initial_particle_steps, seconds_since(start), output.seconds(),
                 output.partial_path());
-    if (!state_kept) return output.partial_path().string();
-    std::string written =
-        fmt::format("the state at t = {:.9g} s to {}", sim.time(), output.partial_path().string());
+    const std::string and_pathlines =
+        stopped_pathlines ? " (pathlines " + stopped_pathlines->string() + ")" : "";
+    if (!state_kept) return output.partial_path().string() + and_pathlines;
+    std::string written = fmt::format("the state at t = {:.9g} s to {}{}", sim.time(),
+                                      output.partial_path().string(), and_pathlines);
     if (context.checkpoints) written += " and the checkpoint " + checkpoint_file.string();
     return written;
   };
@@ -540,6 +553,7 @@ RunReport run_swe(const scenario::Scenario& scene, const RunContext& context,
   }
   progress.finish();
   output.finish();
+  if (pathlines) pathlines->finish(sim);
   spdlog::info(
       "flood statistics sampled {} times (a wave crossing half a map cell or particle spacing, "
       "and every output time): {:.3f} s of the output time (gridding and accumulating)",

@@ -18,6 +18,7 @@
 #include "swemps/io/gdal_messages.hpp"
 #include "swemps/terrain/gridded_field.hpp"
 #include "text_file.hpp"
+#include "vector_files.hpp"
 
 namespace swemps::io {
 
@@ -134,23 +135,14 @@ void write_lines(const std::vector<Line>& lines, const Grid& grid, std::optional
     throw std::runtime_error("cannot write the inundation line " + quoted(file) + ": " + what +
                              gdal_detail());
   };
-  GDALDriver* driver =
-      GetGDALDriverManager()->GetDriverByName(format == VectorFile::gpkg ? "GPKG" : "GeoJSON");
-  if (!driver) fail("GDAL has no driver for it");
-  GDALDatasetUniquePtr out(driver->Create(file.c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!out) fail("cannot create it");
-  OGRSpatialReference crs;
-  crs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  if (grid.crs_wkt.empty()) {
-    // Local metres: an engineering CRS, which a GIS does not take for degrees (as it takes a
-    // GeoPackage layer without any).
-    crs.SetLocalCS("local coordinates in metres");
-    crs.SetLinearUnits(SRS_UL_METER, 1.0);
-  } else if (crs.importFromWkt(grid.crs_wkt.c_str()) != OGRERR_NONE) {
-    fail("its CRS is not WKT");
+  vector::NewLayer created;
+  try {
+    created = vector::create_layer(file, format, "inundation_line", grid.crs_wkt, wkbLineString25D);
+  } catch (const std::runtime_error& e) {
+    fail(e.what());
   }
-  OGRLayer* layer = out->CreateLayer("inundation_line", &crs, wkbLineString25D, nullptr);
-  if (!layer) fail("cannot create its layer");
+  GDALDataset* out = created.file.get();
+  OGRLayer* layer = created.layer;
   for (const char* name : {"max_ground_elevation_m", "max_runup_m", "length_m"}) {
     OGRFieldDefn field(name, OFTReal);
     if (layer->CreateField(&field) != OGRERR_NONE) fail(std::string("cannot add field ") + name);
@@ -165,7 +157,7 @@ void write_lines(const std::vector<Line>& lines, const Grid& grid, std::optional
     if (layer->CreateFeature(&feature) != OGRERR_NONE) fail("cannot add a line");
   }
   if (out->CommitTransaction() == OGRERR_FAILURE) fail("cannot commit the lines");
-  out.reset();  // closes, so that a failure to flush shows before the rename
+  created.file.reset();  // closes, so that a failure to flush shows before the rename
   if (CPLGetLastErrorType() == CE_Failure) fail("cannot close it");
 }
 
@@ -174,13 +166,6 @@ std::optional<double> still_level(const ResultReader& in) {
   if (!in.has("tsunami_arrival_time")) return std::nullopt;
   const double level = in.number(in.variable("tsunami_arrival_time"), "still_level_m");
   return std::isfinite(level) ? std::optional<double>(level) : std::nullopt;
-}
-
-// "<stem>.partial<ext>" beside `file`: a temporary name the drivers still know by extension.
-std::filesystem::path partial_name(const std::filesystem::path& file) {
-  std::filesystem::path partial = file;
-  partial.replace_filename(file.stem().string() + ".partial" + file.extension().string());
-  return partial;
 }
 
 // A CSV field: quoted, with its quotes doubled, when it holds a comma, a quote or a line end.
@@ -228,20 +213,9 @@ std::optional<InundationSummary> export_inundation_line(const std::filesystem::p
   const std::vector<Line> lines = lines_with_ground(*contours->GetLayer(0), bed);
   if (lines.empty()) return std::nullopt;
 
-  const std::filesystem::path partial = partial_name(file);
-  std::error_code ec;
-  std::filesystem::remove(partial, ec);
-  try {
+  vector::write_then_rename(file, [&](const std::filesystem::path& partial) {
     write_lines(lines, grid, still_m, partial, format);
-  } catch (...) {
-    std::filesystem::remove(partial, ec);
-    throw;
-  }
-  std::filesystem::rename(partial, file, ec);
-  if (ec) {
-    std::filesystem::remove(partial, ec);
-    throw std::runtime_error("cannot rename " + quoted(partial) + " to " + quoted(file));
-  }
+  });
 
   InundationSummary summary;
   summary.lines = lines.size();
@@ -289,7 +263,7 @@ bool export_gauge_arrivals(const std::filesystem::path& result, const std::files
     for (const double v : {x[g], y[g], arrival, max_rise, time_of_max}) text::append_cell(table, v);
     table += '\n';
   }
-  text::write_then_rename(csv, partial_name(csv), table);
+  text::write_then_rename(csv, vector::partial_name(csv), table);
   return true;
 }
 

@@ -74,6 +74,7 @@ void SweParticles::add_fluid(double px, double py, double pu, double pv, double 
     label_share[fluid_count_ * label_count_ + origin.label] = 1.0;
   }
   if (tracks_ages_) entry_time.push_back(origin.entry_time_s);
+  if (tracks_pathlines_) pathline.push_back(kNoPathline);
   ++fluid_count_;
   mirror_end_ = fluid_count_;
 }
@@ -139,6 +140,10 @@ void SweParticles::reorder(std::span<const std::uint32_t> order) {
     permute(*field, order, scratch);
   }
   if (tracks_ages_) permute(entry_time, order, scratch);
+  if (tracks_pathlines_) {
+    std::vector<std::int32_t> indices;
+    permute(pathline, order, indices);
+  }
   if (label_count_ > 0) {
     const std::size_t labels = label_count_;
     scratch.resize(label_share.size());
@@ -161,12 +166,21 @@ void SweParticles::remove(std::span<const std::uint8_t> flagged) {
     throw std::logic_error("SweParticles::remove: " + std::to_string(flagged.size()) +
                            " flags for " + std::to_string(fluid_count_) + " particles");
   }
+  if (tracks_pathlines_) {
+    // Where each pathline's particle was when it went, before the positions are compacted.
+    for (std::size_t i = 0; i < flagged.size(); ++i) {
+      if (flagged[i] && pathline[i] != kNoPathline) {
+        pathline_ends.push_back({pathline[i], x[i], y[i], PathlineEnd::Cause::left});
+      }
+    }
+  }
   for (std::vector<double>* field :
        {&x, &y, &u, &v, &volume, &depth, &area, &initial_area, &bed, &number_density,
         &smoothing_length, &omega}) {
     compact(*field, flagged);
   }
   if (tracks_ages_) compact(entry_time, flagged);
+  if (tracks_pathlines_) compact(pathline, flagged);
   if (label_count_ > 0) {
     std::size_t kept = 0;
     for (std::size_t i = 0; i < flagged.size(); ++i) {
@@ -225,6 +239,24 @@ void SweParticles::mix_in(std::size_t i, double volume_m3, double added_m3, Orig
   if (tracks_ages_) {
     entry_time[i] = (volume_m3 * entry_time[i] + added_m3 * origin.entry_time_s) / total;
   }
+}
+
+void SweParticles::track_pathlines() {
+  if (size() != 0) {
+    throw std::logic_error("SweParticles::track_pathlines: only before the first particle");
+  }
+  tracks_pathlines_ = true;
+}
+
+void SweParticles::hand_over_pathline(std::size_t absorbed, std::size_t kept) {
+  if (!tracks_pathlines_ || pathline[absorbed] == kNoPathline) return;
+  if (pathline[kept] != kNoPathline) {
+    pathline_ends.push_back(
+        {pathline[absorbed], x[absorbed], y[absorbed], PathlineEnd::Cause::merged, pathline[kept]});
+  } else {
+    pathline[kept] = pathline[absorbed];
+  }
+  pathline[absorbed] = kNoPathline;
 }
 
 double SweParticles::label_volume(std::size_t k) const {

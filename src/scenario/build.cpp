@@ -291,6 +291,7 @@ Seeded seed_water(const Scenario& scene, const Terrain& terrain) {
   // Provenance is kept only when the output asks for it: otherwise it costs nothing.
   const ProvenanceOutput& provenance = scene.output.provenance;
   p.track_provenance(provenance.sources ? provenance_labels(scene).size() : 0, provenance.age);
+  if (scene.output.pathlines) p.track_pathlines();
   const swe::BedSource* bed = terrain.bed.get();
   // The still water's depth is measured over the floor before a rupture: the water over the
   // floor keeps its depth as the floor moves, so its surface moves with the floor.
@@ -534,6 +535,9 @@ Terrain read_terrain(const Scenario& scene) {
   read_rain_maps(scene, crs, terrain);
   terrain.crs_wkt = crs.wkt();
   add_buildings(scene, terrain);
+  if (scene.output.pathlines) {
+    terrain.pathline_area = pathline_area(*scene.output.pathlines, terrain.crs_wkt);
+  }
   if (scene.fault_source) {
     rupture(*scene.fault_source, displacement_cell(scene, terrain.domain), terrain);
   }

@@ -36,6 +36,12 @@ terrain::GriddedField raise_buildings(const std::vector<BuildingSet>& sets,
 // water is seeded and no rain falls under them.
 std::shared_ptr<const terrain::Footprints> wall_footprints(const std::vector<BuildingSet>& sets);
 
+// The polygons output.pathlines chooses its particles in (its own polygon, or those of its
+// file read into `scene_crs_wkt`); null when it gives none. ScenarioError at the file's key
+// for a file that cannot be read or placed.
+std::shared_ptr<const terrain::Footprints> pathline_area(const PathlineOutput& pathlines,
+                                                         const std::string& scene_crs_wkt);
+
 // Every ring of the sets that are walls, closed, as wall segments.
 std::vector<boundaries::WallSegment> building_walls(const std::vector<BuildingSet>& sets);
 

@@ -21,9 +21,11 @@ BuildingsSpec read_one(const json& v, const std::string& path,
                  "an object with a \"file\" of building polygons");
   BuildingsSpec b;
   b.key_path = path;
-  b.file =
-      file_path(o, "file", "a vector file of polygons (GeoJSON, Shapefile, GeoPackage)", base_dir);
-  b.layer = optional_string(o, "layer", "a layer name").value_or("");
+  const PolygonFileSpec file = read_polygon_file_keys(o, path, base_dir);
+  b.file = file.file;
+  b.layer = file.layer;
+  b.crs = file.crs;
+  b.reproject = file.reproject;
   const std::string_view as = choice(o, "as", {"walls", "bed"}, "walls");
   b.as = as == "bed" ? BuildingsSpec::As::bed : BuildingsSpec::As::walls;
   if (b.as == BuildingsSpec::As::bed && o.find("condition") != nullptr) {
@@ -42,18 +44,28 @@ BuildingsSpec read_one(const json& v, const std::string& path,
   } else {
     b.height_m = positive(o, "height", kMetres, BuildingsSpec::kDefaultHeightM);
   }
-  b.crs = optional_string(o, "crs", "a CRS (\"EPSG:27700\", WKT or a PROJ string), or \"scene\"")
-              .value_or("");
-  b.reproject = optional_bool(o, "reproject", false);
-  if (b.reproject && b.crs == "scene") {
-    throw ScenarioError(o.path("reproject"), "true with \"crs\": \"scene\"",
-                        "one of them: \"scene\" takes the coordinates as they are, "
-                        "\"reproject\" transforms them");
-  }
   return b;
 }
 
 }  // namespace
+
+PolygonFileSpec read_polygon_file_keys(const Object& o, const std::string& path,
+                                       const std::filesystem::path& base_dir) {
+  PolygonFileSpec spec;
+  spec.key_path = path;
+  spec.file =
+      file_path(o, "file", "a vector file of polygons (GeoJSON, Shapefile, GeoPackage)", base_dir);
+  spec.layer = optional_string(o, "layer", "a layer name").value_or("");
+  spec.crs = optional_string(o, "crs", "a CRS (\"EPSG:27700\", WKT or a PROJ string), or \"scene\"")
+                 .value_or("");
+  spec.reproject = optional_bool(o, "reproject", false);
+  if (spec.reproject && spec.crs == "scene") {
+    throw ScenarioError(o.path("reproject"), "true with \"crs\": \"scene\"",
+                        "one of them: \"scene\" takes the coordinates as they are, "
+                        "\"reproject\" transforms them");
+  }
+  return spec;
+}
 
 std::vector<BuildingsSpec> read_buildings(const json* v, const std::filesystem::path& base_dir) {
   if (v == nullptr) return {};

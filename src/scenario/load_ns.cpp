@@ -354,6 +354,11 @@ void check_ns_scene(const Scenario& s) {
                         "no \"provenance\" (" + unsupported("provenance") +
                             ": its particles carry no source or age)");
   }
+  if (s.output.pathlines) {
+    throw ScenarioError(
+        "/output/pathlines", "pathlines",
+        "no \"pathlines\" (" + unsupported("pathlines") + ": they follow shallow-water particles)");
+  }
   if (s.manning_n) {
     throw ScenarioError("/friction", "bed friction",
                         "no \"friction\" (" + unsupported("Manning friction") +

@@ -312,7 +312,7 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
   const Object o(v ? *v : empty_object(), path,
                  {"path", "times", "interval", "grid", "particles", "gauges", "series_interval",
                   "wet_depth", "depth_thresholds", "land_use", "start_time", "rasters",
-                  "raster_format", "tsunami", "provenance"},
+                  "raster_format", "tsunami", "provenance", "pathlines"},
                  "an object");
   Output out;
   out.path = read_output_path(o, scene.name, base_dir);
@@ -346,6 +346,7 @@ Output read_output(const json* v, const Scenario& scene, const std::filesystem::
   out.tsunami = read_tsunami(o.find("tsunami"), o.path("tsunami"), scene, out.wet_depth_m);
   out.provenance = read_provenance(o.find("provenance"), o.path("provenance"));
   out.rasters = read_rasters(o, out.tsunami.has_value(), out.provenance);
+  out.pathlines = read_pathlines(o.find("pathlines"), o.path("pathlines"), scene, out, base_dir);
   out.raster_cog = choice(o, "raster_format", {"cog", "geotiff"}, "cog") == "cog";
   return out;
 }

@@ -117,4 +117,16 @@ void read_model(const json_reading::Object& o, double gravity, Scenario& s);
 // lattice (load_ns.cpp).
 void default_tank_height(Scenario& s);
 
+// The keys "file", "layer", "crs" and "reproject" of a vector file of polygons, as buildings
+// and the pathlines' polygon take them (load_buildings.cpp); `path` is where `o` stands.
+PolygonFileSpec read_polygon_file_keys(const json_reading::Object& o, const std::string& path,
+                                       const std::filesystem::path& base_dir);
+
+// The output's "pathlines" block (load_pathlines.cpp), read after the rest of `output`: its
+// default path is beside output.path, its default interval the series interval, and a
+// source to follow needs output.provenance.sources.
+std::optional<PathlineOutput> read_pathlines(const json_reading::json* v, const std::string& path,
+                                             const Scenario& scene, const Output& output,
+                                             const std::filesystem::path& base_dir);
+
 }  // namespace swemps::scenario

@@ -69,6 +69,7 @@ void ParticleMerging::apply(swe::StepContext& context) {
       return (va * f[a] + vb * f[b]) / volume;
     };
     p.mix_provenance(a, va, b, vb);
+    p.hand_over_pathline(b, a);
     p.x[a] = weighted(p.x);
     p.y[a] = weighted(p.y);
     p.u[a] = weighted(p.u);

@@ -117,6 +117,20 @@ void Simulation::book_initial_volumes() {
   }
 }
 
+void Simulation::start_pathline(std::size_t i, std::int32_t index) {
+  if (!particles_.tracks_pathlines() || i >= particles_.fluid_count() || index < 0) {
+    throw std::invalid_argument("start_pathline: particle " + std::to_string(i) +
+                                " cannot carry pathline " + std::to_string(index));
+  }
+  particles_.pathline[i] = index;
+}
+
+std::vector<particles::PathlineEnd> Simulation::take_pathline_ends() {
+  std::vector<particles::PathlineEnd> ended;
+  ended.swap(particles_.pathline_ends);
+  return ended;
+}
+
 double Simulation::relative_label_volume_change(std::size_t k) const {
   const double reference = ledger_.label_initial_m3[k] + ledger_.label_added_m3[k];
   if (!(reference > 0.0)) return 0.0;
@@ -306,6 +320,10 @@ void Simulation::write_state(StateWriter& out) const {
     }
   }
   if (p.tracks_ages()) out.numbers(std::span<const double>(p.entry_time.data(), n));
+  // Pathlines, when the scene asks for them; the indices are exact as doubles.
+  if (p.tracks_pathlines()) {
+    out.numbers(std::vector<double>(p.pathline.begin(), p.pathline.begin() + n));
+  }
 }
 
 void Simulation::restore_state(StateReader& in) {
@@ -377,6 +395,20 @@ void Simulation::load_state(StateReader& in) {
       throw StateError(in.what() + " is damaged: entry times differ in length");
     }
   }
+  std::vector<std::int32_t> pathline;
+  if (particles_.tracks_pathlines()) {
+    p.track_pathlines();
+    for (const double index : in.numbers()) {
+      const bool whole = index == std::floor(index);
+      if (!(index >= particles::kNoPathline && index < 2147483647.0) || !whole) {
+        throw StateError(in.what() + " is damaged: pathline index " + number(index));
+      }
+      pathline.push_back(static_cast<std::int32_t>(index));
+    }
+    if (pathline.size() != n) {
+      throw StateError(in.what() + " is damaged: pathline indices differ in length");
+    }
+  }
   const auto& [x, y, u, v, volume, depth, area, initial_area, bed, density, smoothing, omega,
                listed] = fields;
   for (std::size_t i = 0; i < n; ++i) {
@@ -388,6 +420,7 @@ void Simulation::load_state(StateReader& in) {
   p.omega = omega;
   if (labels > 0) p.label_share = std::move(label_share);
   if (p.tracks_ages()) p.entry_time = std::move(entry_time);
+  if (p.tracks_pathlines()) p.pathline = std::move(pathline);
   particles_ = std::move(p);
   listed_smoothing_length_ = listed;
   time_s_ = time_s;

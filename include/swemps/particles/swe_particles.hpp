@@ -18,6 +18,20 @@ struct Origin {
   double entry_time_s = 0.0;
 };
 
+// A pathline (docs/provenance.md, "Pathlines") that ended in a step: its particle was removed
+// (it left the domain) or merged into another particle that already carried a pathline, whose
+// line its water goes on along (`into`). Where the particle was when it went.
+struct PathlineEnd {
+  enum class Cause { left, merged };
+  std::int32_t pathline = 0;
+  double x = 0.0, y = 0.0;
+  Cause cause = Cause::left;
+  std::int32_t into = -1;  // merged: the line it joined
+};
+
+// The pathline index of a particle that carries none.
+inline constexpr std::int32_t kNoPathline = -1;
+
 class SweParticles {
  public:
   // Per-particle fields. Units: m, m/s, m^3, m, m^2.
@@ -47,6 +61,12 @@ class SweParticles {
   std::vector<double> label_share;
   std::vector<double> entry_time;
 
+  // Pathlines (docs/provenance.md), for fluid particles only and empty unless tracked: the
+  // index of the pathline each particle carries, kNoPathline for most. The pathlines that
+  // ended since the owner last took them (remove() appends them) are in pathline_ends.
+  std::vector<std::int32_t> pathline;
+  std::vector<PathlineEnd> pathline_ends;
+
   std::size_t size() const { return x.size(); }
   std::size_t fluid_count() const { return fluid_count_; }
   std::size_t ghost_count() const { return size() - fluid_count_; }
@@ -69,6 +89,7 @@ class SweParticles {
   // Reorders fluid particles so that new index k holds old index order[k] (no ghosts allowed).
   void reorder(std::span<const std::uint32_t> order);
   // Removes the fluid particles flagged true (no ghosts allowed); keeps the order of the rest.
+  // A removed particle's pathline ends there, as having left the domain.
   void remove(std::span<const std::uint8_t> flagged);
 
   double total_fluid_volume() const;  // summed in index order: reproducible
@@ -91,12 +112,24 @@ class SweParticles {
   // The fluid particles' volume of label k, summed in index order.
   double label_volume(std::size_t k) const;
 
+  // Pathlines. track_pathlines() starts keeping each particle's pathline index, only while
+  // there are no particles; new particles carry none (a split's second daughter included:
+  // the first keeps its parent's index, and its place). Untracked, they cost nothing.
+  void track_pathlines();
+  bool tracks_pathlines() const { return tracks_pathlines_; }
+  // Particle `kept` takes in particle `absorbed` (a merge, before `absorbed` is removed): it
+  // takes over the pathline of `absorbed` when it carries none of its own, so that a line
+  // goes on with the water it followed; with two, the absorbed one's ends at the merge, where
+  // `absorbed` stands, as joining the other (pathline_ends).
+  void hand_over_pathline(std::size_t absorbed, std::size_t kept);
+
  private:
   void resize(std::size_t n);
   std::size_t fluid_count_ = 0;
   std::size_t mirror_end_ = 0;
   std::size_t label_count_ = 0;
   bool tracks_ages_ = false;
+  bool tracks_pathlines_ = false;
   bool mirrors_closed_ = false;
 };
 

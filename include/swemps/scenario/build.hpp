@@ -53,6 +53,8 @@ struct Terrain {
     std::size_t footprints = 0, not_polygons = 0, degenerate = 0;
   };
   std::vector<BuildingsRead> buildings;
+  // The polygons output.pathlines chooses its particles in, in the scene's CRS; null: none.
+  std::shared_ptr<const terrain::Footprints> pathline_area;
   // Per rain (scene.rain), the maps it names, in the scene's CRS and the scene's units (mm/h,
   // mm, ...): its rate, one map or a series of them with the start of each in seconds of the
   // run, the last until rate_end_s; and its loss parameters by their keys in the rain

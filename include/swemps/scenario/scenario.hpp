@@ -258,6 +258,41 @@ struct ProvenanceOutput {
   bool any() const { return sources || age; }
 };
 
+// A file of polygons a scene names (GeoJSON, Shapefile, GeoPackage), read as the buildings'
+// are (io::read_polygons): in the scene's CRS, or transformed with `reproject`.
+struct PolygonFileSpec {
+  std::string key_path;        // where the scene names it, for messages
+  std::filesystem::path file;  // absolute
+  std::string layer;           // empty: the file's first layer
+  std::string crs;             // the file's CRS when it declares none; "scene": as they are
+  bool reproject = false;
+};
+
+// The tracks of chosen particles, written as lines in a vector file with time as each
+// vertex's M (docs/provenance.md, "Pathlines"). The particles are chosen once, at start_s,
+// among those that pass every filter given, at most `count` of them spread evenly over the
+// rest (in the particles' order, which follows their cells).
+struct PathlineOutput {
+  // Absolute, .gpkg or .geojson; empty: "<output stem>_pathlines.gpkg" beside wherever the
+  // run writes its netCDF file (file()).
+  std::filesystem::path path;
+  VectorFormat format = VectorFormat::gpkg;
+  std::filesystem::path file(const std::filesystem::path& output) const {
+    if (!path.empty()) return path;
+    std::filesystem::path beside = output;
+    beside.replace_filename(output.stem().string() + "_pathlines.gpkg");
+    return beside;
+  }
+  std::size_t count = 100;
+  // A provenance label's name: only particles at least half of whose water is that source's.
+  std::optional<std::string> source;
+  // Only particles inside: a polygon given by its vertices, or the polygons of a file.
+  std::vector<Point> polygon;
+  std::optional<PolygonFileSpec> polygon_file;
+  double start_s = 0.0;
+  double interval_s = 0.0;  // between vertices: the series interval unless given
+};
+
 struct Output {
   std::filesystem::path path;   // absolute once loaded
   std::vector<double> times_s;  // sorted, unique, in (0, end_time]; t = 0 is always written too
@@ -281,6 +316,7 @@ struct Output {
   bool raster_cog = true;
   std::optional<TsunamiOutput> tsunami;  // absent: none of the tsunami products
   ProvenanceOutput provenance;
+  std::optional<PathlineOutput> pathlines;  // absent: none
 };
 
 // An earthquake's rectangular fault planes (tsunami/okada.hpp): the floor's vertical

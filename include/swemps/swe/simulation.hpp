@@ -145,6 +145,11 @@ class Simulation {
   std::size_t steps() const { return steps_; }
   std::size_t particle_steps() const { return particle_steps_; }
   const particles::SweParticles& particles() const { return particles_; }
+  // Pathlines (docs/provenance.md; the scene's particles track them): fluid particle i
+  // carries pathline `index` (>= 0) from now on, through sorts, splits and merges.
+  void start_pathline(std::size_t i, std::int32_t index);
+  // The pathlines whose particles went since the last call (SweParticles::remove), in order.
+  std::vector<particles::PathlineEnd> take_pathline_ends();
   const Scheme& scheme() const { return *scheme_; }
   // The scheme's kernel; the radii are the particles' smoothing_length.
   const ParticleKernel& kernel() const { return scheme_->kernel(); }
