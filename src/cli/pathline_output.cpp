@@ -82,10 +82,10 @@ void PathlineOutput::observe(swe::Simulation& sim) {
 
 void PathlineOutput::write(const swe::Simulation* last, const std::filesystem::path& file) {
   const auto start = Clock::now();
-  maps::PathlineRecorder lines = recorder_;
-  if (last) lines.record(last->particles(), last->time());
+  // The run ends here (a checkpoint, if any, holds the lines as they were before this vertex).
+  if (last) recorder_.record(last->particles(), last->time());
   try {
-    io::write_pathlines(lines.lines(), layer_, file,
+    io::write_pathlines(recorder_.lines(), layer_, file,
                         spec_.format == scenario::VectorFormat::geojson ? io::VectorFile::geojson
                                                                         : io::VectorFile::gpkg);
   } catch (const std::runtime_error& e) {
