@@ -44,7 +44,7 @@ std::string describe_numerics(const ns::Settings& s) {
       s.velocity_kernel.support_spacings == s.pressure_kernel.support_spacings;
   return fmt::format(
       "kernel {}{}, source {}, gradient {}{}, free surface below {} n0{}, wall pressures {}, "
-      "Courant {}, solver tolerance {}, collisions {}",
+      "Courant {}, solver tolerance {}, collisions {}, {} operators",
       kernel(s.pressure_kernel),
       same_kernels ? "" : fmt::format(" ({} for viscosity)", kernel(s.velocity_kernel)),
       s.source == ns::SourceTerm::mixed ? fmt::format("mixed (gamma {})", s.source_gamma)
@@ -58,7 +58,8 @@ std::string describe_numerics(const ns::Settings& s) {
           ? fmt::format(" and one-sided beyond {} l0", s.free_surface_asymmetry)
           : "",
       s.boundary == ns::BoundaryPressure::extrapolated ? "extrapolated" : "solved (Poisson)",
-      s.courant, s.solver.relative_tolerance, s.collision ? "on" : "off");
+      s.courant, s.solver.relative_tolerance, s.collision ? "on" : "off",
+      s.operators == ns::Operators::least_squares ? "least-squares" : "MPS");
 }
 
 // The plan cell (along one axis) that holds coordinate x, or -1 outside the grid; cells are

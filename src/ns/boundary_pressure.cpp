@@ -62,9 +62,10 @@ void assemble_poisson_extrapolated(const neighbors::NeighborList& pairs,
                                    std::span<const double> pair_weight,
                                    std::span<const char> unknown, std::span<const double> source,
                                    const BoundaryExtrapolation& boundary, double laplacian_factor,
-                                   PoissonSystem& out) {
+                                   PoissonSystem& out, std::span<const double> coefficient) {
   const std::size_t fluid_count = boundary.fluid_count;
-  if (pair_weight.size() != pairs.index.size() || unknown.size() < fluid_count ||
+  if (pair_weight.size() != pairs.index.size() ||
+      (!coefficient.empty() && coefficient.size() != pairs.index.size()) || unknown.size() < fluid_count ||
       source.size() < fluid_count || pairs.row_count() < fluid_count) {
     throw std::invalid_argument("poisson: inputs do not match the neighbour list");
   }
@@ -102,8 +103,10 @@ void assemble_poisson_extrapolated(const neighbors::NeighborList& pairs,
     const auto neighbours = pairs.row(i);
     for (std::size_t m = 0; m < neighbours.size(); ++m) {
       const std::uint32_t j = neighbours[m];
-      const double w = pair_weight[first + m];
-      if (!(w > 0.0)) continue;
+      // A pair counts where its kernel weight is positive (a polynomial kernel rounds to a
+      // tiny negative value at its cut-off); its coefficient may be negative.
+      if (!(pair_weight[first + m] > 0.0)) continue;
+      const double w = coefficient.empty() ? pair_weight[first + m] : coefficient[first + m];
       diagonal += w;
       if (j < fluid_count) {
         if (unknown_of_particle[j] >= 0) add(unknown_of_particle[j], -w);

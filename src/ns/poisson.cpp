@@ -2,11 +2,13 @@
 
 #include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <utility>
 
 #include "swemps/ns/incomplete_cholesky.hpp"
+#include "swemps/ns/incomplete_lu.hpp"
 
 namespace swemps::ns {
 
@@ -103,11 +105,15 @@ struct PoissonSolver::Impl {
       diagonal;
   Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, ZeroFillIncompleteCholesky>
       cholesky;
+  Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> general_diagonal;
+  Eigen::BiCGSTAB<Matrix, ZeroFillIncompleteLU> general_lu;
 };
 
 PoissonSolver::PoissonSolver(const PoissonSettings& settings) : impl_(std::make_unique<Impl>()) {
-  if (!(settings.relative_tolerance > 0.0) || settings.max_iterations < 1) {
-    throw std::invalid_argument("poisson solver: tolerance must be > 0, iterations >= 1");
+  if (!(settings.relative_tolerance > 0.0) || settings.max_iterations < 1 ||
+      !(settings.compression_tolerance >= 0.0)) {
+    throw std::invalid_argument(
+        "poisson solver: tolerances must be > 0 (compression >= 0), iterations >= 1");
   }
   impl_->settings = settings;
 }
@@ -125,8 +131,18 @@ PoissonReport PoissonSolver::solve(const PoissonSystem& system, Eigen::VectorXd&
     report.converged = true;
     return report;
   }
+  // |r| / |b| that leaves the compression tolerance's root mean square.
+  const double rhs_norm = system.rhs.norm();
+  const double root_n = std::sqrt(static_cast<double>(system.rhs.size()));
+  const bool by_compression =
+      impl_->settings.compression_tolerance > 0.0 && system.residual_to_compression > 0.0;
+  const double tolerance =
+      by_compression ? std::clamp(impl_->settings.compression_tolerance * root_n /
+                                      (system.residual_to_compression * rhs_norm),
+                                  1e-14, 0.5)
+                     : impl_->settings.relative_tolerance;
   auto run = [&](auto& cg) {
-    cg.setTolerance(impl_->settings.relative_tolerance);
+    cg.setTolerance(tolerance);
     cg.setMaxIterations(impl_->settings.max_iterations);
     cg.compute(system.matrix);
     if (cg.info() != Eigen::Success) {
@@ -135,9 +151,17 @@ PoissonReport PoissonSolver::solve(const PoissonSystem& system, Eigen::VectorXd&
     guess = cg.solveWithGuess(system.rhs, guess);
     report.iterations = static_cast<int>(cg.iterations());
     report.relative_residual = cg.error();
+    report.compression_left = cg.error() * rhs_norm * system.residual_to_compression / root_n;
     report.converged = cg.info() == Eigen::Success;
   };
-  if (impl_->settings.preconditioner == Preconditioner::diagonal) {
+  const bool diagonal = impl_->settings.preconditioner == Preconditioner::diagonal;
+  if (!system.symmetric) {
+    if (diagonal) {
+      run(impl_->general_diagonal);
+    } else {
+      run(impl_->general_lu);
+    }
+  } else if (diagonal) {
     run(impl_->diagonal);
   } else {
     run(impl_->cholesky);

@@ -1,6 +1,5 @@
 #include "swemps/ns/simulation.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -52,22 +51,17 @@ void check_settings(const Settings& s) {
     require(s.collision->restitution >= 0.0 && s.collision->restitution <= 1.0,
             "collision restitution must be in [0, 1]");
   }
+  require(s.operators != Operators::least_squares ||
+              (s.boundary == BoundaryPressure::extrapolated &&
+               s.gradient != PressureGradient::minimum_pressure),
+          "the least-squares operators need extrapolated boundary pressures and a corrected "
+          "pressure gradient");
   require(s.sort_interval >= 1, "sort interval must be >= 1");
 }
 
 template <int Dim>
 kernels::AnyKernel<Dim> kernel_of(const KernelChoice& choice, double spacing_m) {
   return kernels::make_kernel<Dim>(choice.spec, choice.support_spacings * spacing_m);
-}
-
-template <int Dim>
-double squared_distance(const Particles<Dim>& p, std::size_t i, std::size_t j) {
-  double r2 = 0.0;
-  for (int d = 0; d < Dim; ++d) {
-    const double delta = p.position[d][j] - p.position[d][i];
-    r2 += delta * delta;
-  }
-  return r2;
 }
 
 }  // namespace
@@ -86,7 +80,8 @@ Simulation<Dim>::Simulation(Particles<Dim> particles, const Settings& settings,
       velocity_lattice_(lattice_constants<Dim>(velocity_kernel_, settings.spacing_m)),
       search_radius_(std::max(kernels::support<Dim>(pressure_kernel_),
                               kernels::support<Dim>(velocity_kernel_))),
-      solver_(settings.solver) {
+      solver_(settings.solver),
+      operators_(make_pressure_operators<Dim>(settings)) {
   if (particles_.fluid == 0) throw std::invalid_argument("ns simulation: no fluid particles");
   for (int d = 0; d < Dim; ++d) {
     if (!(upper_[d] > lower_[d])) throw std::invalid_argument("ns simulation: empty bounds");
@@ -328,51 +323,6 @@ void Simulation<Dim>::measure_density(double dt) {
       pressure_kernel_);
 }
 
-namespace {
-
-// Unmarks the unknowns of every group of rows that no strictly diagonally dominant row
-// reaches through the matrix's couplings (a group without a Dirichlet neighbour); returns
-// how many.
-std::size_t drop_ungrounded(const PoissonSystem& system, std::vector<char>& unknown) {
-  const auto& a = system.matrix;
-  const Eigen::Index n = a.rows();
-  std::vector<char> reached(static_cast<std::size_t>(n), 0);
-  std::vector<Eigen::Index> queue;
-  for (Eigen::Index r = 0; r < n; ++r) {
-    double diagonal = 0.0, off = 0.0;
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor, int>::InnerIterator it(a, r); it; ++it) {
-      if (it.col() == r) {
-        diagonal += it.value();
-      } else {
-        off += std::abs(it.value());
-      }
-    }
-    if (diagonal - off > 1e-9 * diagonal) {
-      reached[static_cast<std::size_t>(r)] = 1;
-      queue.push_back(r);
-    }
-  }
-  while (!queue.empty()) {
-    const Eigen::Index r = queue.back();
-    queue.pop_back();
-    for (Eigen::SparseMatrix<double, Eigen::RowMajor, int>::InnerIterator it(a, r); it; ++it) {
-      if (!reached[static_cast<std::size_t>(it.col())]) {
-        reached[static_cast<std::size_t>(it.col())] = 1;
-        queue.push_back(it.col());
-      }
-    }
-  }
-  std::size_t dropped = 0;
-  for (Eigen::Index r = 0; r < n; ++r) {
-    if (reached[static_cast<std::size_t>(r)]) continue;
-    unknown[system.particle_of_unknown[static_cast<std::size_t>(r)]] = 0;
-    ++dropped;
-  }
-  return dropped;
-}
-
-}  // namespace
-
 template <int Dim>
 bool Simulation<Dim>::one_sided(std::size_t i) const {
   const double limit = settings_.free_surface_asymmetry * settings_.spacing_m;
@@ -433,25 +383,14 @@ void Simulation<Dim>::solve_pressure(double dt) {
                                    settings_.source_gamma * (previous_density_[i] - n0) / n0)
                        : -scale * (n - n0) / n0;
   }
-  const double laplacian_factor =
-      2.0 * Dim / (pressure_lattice_.lambda_m2 * pressure_lattice_.number_density);
   if (extrapolated) {
     build_boundary_extrapolation(pairs_, pair_weight_, fluid, particles_.size(),
                                  particles_.position[Dim - 1],
                                  settings_.density_kg_m3 * settings_.gravity_m_s2, boundary_);
-    assemble_poisson_extrapolated(pairs_, pair_weight_, unknown_, source_, boundary_,
-                                  laplacian_factor, system_);
-    // A few fluid particles held only by walls (a drop in a corner) have no free surface in
-    // reach: their pressure is undetermined and the matrix singular. They are set to p = 0
-    // like the surface, and the system is formed again without them.
-    if (drop_ungrounded(system_, unknown_) > 0) {
-      assemble_poisson_extrapolated(pairs_, pair_weight_, unknown_, source_, boundary_,
-                                    laplacian_factor, system_);
-    }
-  } else {
-    assemble_poisson(pairs_, pair_weight_, unknown_, source_, candidates, laplacian_factor,
-                     system_);
   }
+  operators_->assemble(geometry(), unknown_, source_, extrapolated ? &boundary_ : nullptr,
+                       system_);
+  system_.residual_to_compression *= dt * dt / settings_.density_kg_m3;
   guess_.resize(static_cast<Eigen::Index>(system_.particle_of_unknown.size()));
   for (std::size_t k = 0; k < system_.particle_of_unknown.size(); ++k) {
     guess_[static_cast<Eigen::Index>(k)] = particles_.pressure[system_.particle_of_unknown[k]];
@@ -485,90 +424,11 @@ void Simulation<Dim>::solve_pressure(double dt) {
   if (!last_.poisson.converged) ++totals_.unconverged_solves;
 }
 
-namespace {
-
-// Solves C g = b for a symmetric Dim x Dim matrix; false when C is too close to singular
-// (a particle with neighbours on one line or plane only): det C below 5 % of the product of
-// its diagonal, i.e. a correlation between axes above about 0.97 (2D). A flat surface or a
-// corner keeps det C near that product; two neighbours nearly in line would amplify the
-// pressure differences without bound.
-template <int Dim>
-bool solve_symmetric(const std::array<std::array<double, Dim>, Dim>& c,
-                     const std::array<double, Dim>& b, std::array<double, Dim>& g) {
-  Eigen::Matrix<double, Dim, Dim> matrix;
-  double scale = 1.0;
-  for (int r = 0; r < Dim; ++r) {
-    for (int k = 0; k < Dim; ++k) matrix(r, k) = c[r][k];
-    scale *= c[r][r];
-  }
-  if (!(scale > 0.0) || !(matrix.determinant() > 0.05 * scale)) return false;
-  const Eigen::Matrix<double, Dim, 1> solved =
-      matrix.inverse() * Eigen::Map<const Eigen::Matrix<double, Dim, 1>>(b.data());
-  for (int d = 0; d < Dim; ++d) g[d] = solved[d];
-  return true;
-}
-
-}  // namespace
-
 template <int Dim>
 void Simulation<Dim>::correct(double dt) {
   const std::size_t fluid = particles_.fluid;
-  const std::size_t candidates = fluid + particles_.wall;
-  const double factor = -dt * Dim / (settings_.density_kg_m3 * pressure_lattice_.number_density);
-  const bool corrected = settings_.gradient != PressureGradient::minimum_pressure;
-  const bool repulsive = settings_.gradient != PressureGradient::corrected;
-  // Extrapolated boundary pressures take part in the gradient, dummies too; the smallest
-  // pressure is the fluid's (a wall above the water extrapolates below zero, and would make
-  // the surface particle beside it repel everything).
-  const bool extrapolated = settings_.boundary == BoundaryPressure::extrapolated;
-  const std::size_t sources = extrapolated ? particles_.size() : candidates;
-  const std::size_t lowest_of = extrapolated ? fluid : candidates;
-  const double reach = settings_.repulsion_distance_spacings * settings_.spacing_m;
-  const double repulsion_reach2 = reach * reach;
+  operators_->velocity_change(geometry(), dt, predicted_velocity_);
   auto& p = particles_;
-  parallel_for(fluid, [&](std::size_t i) {
-    const std::size_t first = pairs_.offsets[i];
-    const auto row = pairs_.row(i);
-    double lowest = p.pressure[i];
-    for (std::size_t m = 0; m < row.size() && repulsive; ++m) {
-      if (row[m] < lowest_of && pair_weight_[first + m] > 0.0) {
-        lowest = std::min(lowest, p.pressure[row[m]]);
-      }
-    }
-    std::array<double, Dim> gradient{};
-    std::array<std::array<double, Dim>, Dim> moment{};
-    for (std::size_t m = 0; m < row.size(); ++m) {
-      const std::uint32_t j = row[m];
-      const double w = pair_weight_[first + m];
-      if (j >= sources || w == 0.0) continue;
-      const double r2 = squared_distance(p, i, j);
-      if (r2 == 0.0) continue;
-      std::array<double, Dim> x{};
-      for (int d = 0; d < Dim; ++d) x[d] = p.position[d][j] - p.position[d][i];
-      // p_j - p_min = (p_j - p_i) + (p_i - p_min): with the correction matrix the second
-      // part, the repulsion, acts only between pairs closer than the repulsion distance.
-      const double coefficient =
-          (corrected ? p.pressure[j] - p.pressure[i] +
-                           (r2 < repulsion_reach2 ? p.pressure[i] - lowest : 0.0)
-                     : p.pressure[j] - lowest) *
-          w / r2;
-      for (int d = 0; d < Dim; ++d) gradient[d] += coefficient * x[d];
-      if (corrected) {
-        for (int a = 0; a < Dim; ++a) {
-          for (int b = 0; b < Dim; ++b) moment[a][b] += x[a] * x[b] * w / r2;
-        }
-      }
-    }
-    std::array<double, Dim> solved{};
-    if (corrected && solve_symmetric<Dim>(moment, gradient, solved)) {
-      // C_i^-1 b is the gradient itself; the standard form's d/n0 is its lattice value.
-      for (int d = 0; d < Dim; ++d) {
-        predicted_velocity_[d][i] = -dt * solved[d] / settings_.density_kg_m3;
-      }
-      return;
-    }
-    for (int d = 0; d < Dim; ++d) predicted_velocity_[d][i] = factor * gradient[d];
-  });
   for (int d = 0; d < Dim; ++d) {
     for (std::size_t i = 0; i < fluid; ++i) {
       const double change = predicted_velocity_[d][i];

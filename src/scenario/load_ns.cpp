@@ -114,10 +114,11 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
   NsSpec spec;
   ns::Settings& s = spec.settings;
   // The scheme sets every numerical default; the keys below override them one by one.
-  s = ns::scheme_settings(choice(o, "scheme", {"well-balanced", "standard"}, "well-balanced") ==
-                                  "standard"
-                              ? ns::Scheme::standard
-                              : ns::Scheme::well_balanced);
+  const std::string_view scheme =
+      choice(o, "scheme", {"well-balanced", "standard", "least-squares"}, "well-balanced");
+  s = ns::scheme_settings(scheme == "standard"        ? ns::Scheme::standard
+                          : scheme == "least-squares" ? ns::Scheme::least_squares
+                                                      : ns::Scheme::well_balanced);
   s.gravity_m_s2 = gravity;
   s.spacing_m = positive(o, "spacing", kMetres);
   if (o.find("tank_height") != nullptr) {
@@ -207,6 +208,23 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
       throw ScenarioError(o.path(key),
                           describe(*o.find(key)) + " with the \"minimum-pressure\" gradient",
                           "a corrected \"pressure_gradient\" alongside it");
+    }
+  }
+  // The least-squares operators fit over the walls' extrapolated pressures and replace the
+  // corrected gradient (least_squares_operators.hpp): they have neither Poisson walls nor the
+  // minimum-pressure gradient.
+  if (s.operators == ns::Operators::least_squares) {
+    for (const char* key : {"pressure_gradient", "boundary_pressure"}) {
+      const bool refused = key == std::string_view("pressure_gradient")
+                               ? standard_gradient
+                               : s.boundary == ns::BoundaryPressure::poisson;
+      if (refused) {
+        throw ScenarioError(o.path(key),
+                            describe(*o.find(key)) + " with the \"least-squares\" scheme",
+                            key == std::string_view("pressure_gradient")
+                                ? "\"corrected\" or \"corrected-repulsive\""
+                                : "\"extrapolated\" (or no key)");
+      }
     }
   }
   if (s.free_surface_asymmetry > 0.0 && number_density) {

@@ -95,6 +95,9 @@ const char* usage =
     "  --asymmetry A                  surface only where the mean offset > A l0 (0: off)\n"
     "  --gradient minimum-pressure|corrected|corrected-repulsive (minimum-pressure)\n"
     "  --boundary poisson|extrapolated          wall pressures (poisson)\n"
+    "  --scheme standard|well-balanced|least-squares  every choice of that scheme; options\n"
+    "                                 after it override them (standard)\n"
+    "  --operators mps|least-squares  Laplacian and gradient discretisation (mps)\n"
     "  --preconditioner incomplete-cholesky|diagonal (incomplete-cholesky)\n"
     "  --tolerance TOL                CG relative residual (1e-6)\n"
     "  --max-iterations N             CG iteration cap (1000)\n"
@@ -189,6 +192,22 @@ Options parse(int argc, char** argv) {
       } else {
         throw std::invalid_argument(
             "--gradient is minimum-pressure, corrected or corrected-repulsive");
+      }
+    } else if (key == "--scheme") {
+      // Every numerical choice of the scheme; options after it override them one by one.
+      if (value != "standard" && value != "well-balanced" && value != "least-squares") {
+        throw std::invalid_argument("--scheme is standard, well-balanced or least-squares");
+      }
+      s = ns::scheme_settings(value == "standard"        ? ns::Scheme::standard
+                              : value == "least-squares" ? ns::Scheme::least_squares
+                                                         : ns::Scheme::well_balanced);
+    } else if (key == "--operators") {
+      if (value == "mps") {
+        s.operators = ns::Operators::mps;
+      } else if (value == "least-squares") {
+        s.operators = ns::Operators::least_squares;
+      } else {
+        throw std::invalid_argument("--operators is mps or least-squares");
       }
     } else if (key == "--boundary") {
       if (value == "poisson") {
@@ -611,6 +630,8 @@ int main(int argc, char** argv) {
           << " boundary="
           << (o.settings.boundary == ns::BoundaryPressure::extrapolated ? "extrapolated"
                                                                         : "poisson")
+          << " operators="
+          << (o.settings.operators == ns::Operators::least_squares ? "least-squares" : "mps")
           << " collision=" << (o.settings.collision ? "on" : "off") << " threads=" << threads
           << " fluid=" << r.fluid << " wall=" << r.wall << " dummy=" << r.dummy
           << " layers=" << r.solid_layers << " steps=" << t.steps

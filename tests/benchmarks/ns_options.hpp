@@ -2,10 +2,11 @@
 // ns::Settings, so the standard scheme and the well-balanced options can be timed and
 // compared from the command line.
 //
-// Keys: scheme=standard|well-balanced (every numerical choice of that scheme; later keys
-// override), source=number-density|mixed, gamma=G, gradient=minimum|corrected|corrected-repulsive,
-// boundary=poisson|extrapolated, repulsion=R, asymmetry=A, kernel=NAME, support=S, beta=B,
-// courant=C, tolerance=T, preconditioner=ic|diagonal, collision=off.
+// Keys: scheme=standard|well-balanced|least-squares (every numerical choice of that scheme;
+// later keys override), operators=mps|least-squares, source=number-density|mixed, gamma=G,
+// gradient=minimum|corrected|corrected-repulsive, boundary=poisson|extrapolated, repulsion=R,
+// asymmetry=A, kernel=NAME, support=S, beta=B, courant=C, tolerance=T, compression=E
+// (solver.compression_tolerance), preconditioner=ic|diagonal, collision=off.
 #pragma once
 
 #include <cstdlib>
@@ -22,11 +23,15 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
   const std::string key = argument.substr(0, eq), value = argument.substr(eq + 1);
   const double number = std::atof(value.c_str());
   if (key == "scheme") {
-    if (value != "standard" && value != "well-balanced") return false;
+    if (value != "standard" && value != "well-balanced" && value != "least-squares") return false;
     const double spacing = s.spacing_m;
-    s = ns::scheme_settings(value == "standard" ? ns::Scheme::standard
-                                                : ns::Scheme::well_balanced);
+    s = ns::scheme_settings(value == "standard"        ? ns::Scheme::standard
+                            : value == "least-squares" ? ns::Scheme::least_squares
+                                                       : ns::Scheme::well_balanced);
     s.spacing_m = spacing;
+  } else if (key == "operators") {
+    if (value != "mps" && value != "least-squares") return false;
+    s.operators = value == "mps" ? ns::Operators::mps : ns::Operators::least_squares;
   } else if (key == "source") {
     s.source = value == "mixed" ? ns::SourceTerm::mixed : ns::SourceTerm::number_density;
   } else if (key == "gamma") {
@@ -56,6 +61,8 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
     s.courant = number;
   } else if (key == "tolerance") {
     s.solver.relative_tolerance = number;
+  } else if (key == "compression") {
+    s.solver.compression_tolerance = number;
   } else if (key == "preconditioner") {
     if (value != "ic" && value != "diagonal") return false;
     s.solver.preconditioner = value == "diagonal" ? ns::Preconditioner::diagonal

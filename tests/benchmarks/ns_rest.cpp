@@ -111,8 +111,9 @@ int run(double end_time, double l0, const std::vector<std::string>& options) {
       s2 = std::max(s2, v2);
     }
     if (trace) {
-      std::printf("t %.2f fastest %.3e at (%.4f, %.4f) p %.1f; gauges", sim.time(), std::sqrt(s2),
-                  p.position[0][which], p.position[Dim - 1][which], p.pressure[which]);
+      std::printf("t %.2f fastest %.3e at (%.4f, %.4f) p %.1f; compression left %.1e; gauges",
+                  sim.time(), std::sqrt(s2), p.position[0][which], p.position[Dim - 1][which],
+                  p.pressure[which], sim.last_step().poisson.compression_left);
       for (const auto& at : probes) {
         std::printf(" %.4f", ns::pressure_at<Dim>(p, sim.pressure_kernel(), at) / reference);
       }

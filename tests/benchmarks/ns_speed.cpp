@@ -45,9 +45,12 @@ int main(int argc, char** argv) {
   Simulation<2> sim(fill_tank<2>(tank), s, {-solid, -solid}, {3.216 + solid, 1.2 + solid});
   const auto& p = sim.particles();
   std::printf(
-      "fluid %zu, wall %zu, dummy %zu; threads %d; tolerance %g, courant %g, %s\n", p.fluid, p.wall,
-      p.dummy, omp_get_max_threads(), s.solver.relative_tolerance, s.courant,
-      s.solver.preconditioner == Preconditioner::diagonal ? "diagonal" : "incomplete Cholesky");
+      "fluid %zu, wall %zu, dummy %zu; threads %d; tolerance %g, courant %g, %s operators, %s\n",
+      p.fluid, p.wall, p.dummy, omp_get_max_threads(), s.solver.relative_tolerance, s.courant,
+      s.operators == Operators::least_squares ? "least-squares" : "MPS",
+      s.solver.preconditioner == Preconditioner::diagonal ? "diagonal"
+      : s.operators == Operators::least_squares           ? "BiCGSTAB, incomplete LU"
+                                                          : "CG, incomplete Cholesky");
 
   const auto wall_start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
@@ -56,10 +59,11 @@ int main(int argc, char** argv) {
     const double wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     std::printf(
-        "t %.1f s: steps %zu, front %.3f m, Poisson iterations/step %.1f (max %d), wall %.1f s\n",
+        "t %.1f s: steps %zu, front %.3f m, Poisson iterations/step %.1f (max %d), "
+        "compression left by the last solve %.1e, wall %.1f s\n",
         t, sim.steps(), front_position<2>(sim.particles(), s.spacing_m),
         double(sim.totals().poisson_iterations) / double(sim.steps()),
-        sim.totals().max_poisson_iterations, wall);
+        sim.totals().max_poisson_iterations, sim.last_step().poisson.compression_left, wall);
     std::fflush(stdout);
   }
   const double wall =

@@ -13,6 +13,7 @@
 #include "swemps/neighbors/neighbor_list.hpp"
 #include "swemps/ns/boundary_pressure.hpp"
 #include "swemps/ns/tank.hpp"
+#include "../support/ns_fluid_pairs.hpp"
 
 namespace {
 
@@ -40,18 +41,8 @@ Tank make_tank(double jitter) {
   for (std::size_t i = 0; i < t.particles.fluid; ++i) {
     for (int d = 0; d < 2; ++d) t.particles.position[d][i] += shift(rng);
   }
-  const auto kernel = kernels::make_kernel<2>(kernels::KernelSpec{}, 2.1 * kSpacing);
-  const auto coords = t.particles.coordinates();
-  neighbors::CellList<2> cells;
-  cells.build(coords, 2.1 * kSpacing);
-  neighbors::build_neighbor_list<2>(cells, coords, t.particles.fluid, 2.1 * kSpacing, t.pairs);
-  for (std::size_t i = 0; i < t.pairs.row_count(); ++i) {
-    for (std::uint32_t j : t.pairs.row(i)) {
-      t.weight.push_back(kernels::weight<2>(
-          kernel, std::hypot(t.particles.position[0][j] - t.particles.position[0][i],
-                             t.particles.position[1][j] - t.particles.position[1][i])));
-    }
-  }
+  test::fluid_pairs(t.particles, kernels::make_kernel<2>(kernels::KernelSpec{}, 2.1 * kSpacing),
+                    t.pairs, t.weight);
   ns::build_boundary_extrapolation(t.pairs, t.weight, t.particles.fluid, t.particles.size(),
                                    t.particles.position[1], kRhoG, t.boundary);
   return t;

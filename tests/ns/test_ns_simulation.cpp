@@ -144,6 +144,12 @@ TEST_CASE("ns settings out of range are refused", "[ns]") {
   bad = s;
   bad.solver.relative_tolerance = 0.0;
   CHECK_THROWS_AS(build(bad), std::invalid_argument);
+  // The least-squares operators fit over extrapolated wall pressures only.
+  bad = scheme_settings(Scheme::least_squares);
+  bad.spacing_m = 0.01;
+  CHECK_NOTHROW(build(bad));
+  bad.boundary = BoundaryPressure::poisson;
+  CHECK_THROWS_AS(build(bad), std::invalid_argument);
 }
 
 TEST_CASE("ns: water at rest in a tank holds hydrostatic pressure", "[ns]") {
@@ -193,7 +199,8 @@ Settings quiet_settings(double l0) {
 // and the fastest particle seen, over sqrt(g H).
 template <int Dim>
 std::pair<double, double> rest_in_tank(const std::array<double, Dim>& size, double depth,
-                                       double end_s, double support_spacings = 2.1) {
+                                       double end_s, double support_spacings = 2.1,
+                                       Operators operators = Operators::mps) {
   const double l0 = 0.01;
   TankSpec<Dim> tank;
   tank.spacing_m = l0;
@@ -202,6 +209,7 @@ std::pair<double, double> rest_in_tank(const std::array<double, Dim>& size, doub
   water.upper[Dim - 1] = depth;
   tank.water.push_back(water);
   Settings s = quiet_settings(l0);
+  s.operators = operators;
   s.pressure_kernel.support_spacings = support_spacings;
   s.velocity_kernel.support_spacings = support_spacings;
   std::array<double, Dim> lower{}, upper{};
@@ -261,6 +269,17 @@ TEST_CASE("ns: water at rest stays at rest with the well-balanced scheme, 3D, 10
   CHECK(fastest < 0.01);
 }
 
+// The same bar with the least-squares operators (the scheme "least-squares"): measured 1.41 %
+// and 1.2e-4 sqrt(g H) over 10 s. In 3D at 2.1 l0 they do not hold it either: a mode grows on
+// the surface from about 1.5 s (docs/ns-dam-break.md, "Least-squares operators").
+TEST_CASE("ns: water at rest stays at rest with the least-squares operators, 2D, 10 s",
+          "[ns][physics][least-squares]") {
+  const auto [worst, fastest] =
+      rest_in_tank<2>({0.4, 0.3}, 0.2, 10.0, 2.1, Operators::least_squares);
+  CHECK(worst < 0.02);
+  CHECK(fastest < 0.01);
+}
+
 TEST_CASE("ns: a 2D column collapse stays stable and its front follows the experiment", "[ns]") {
   const double a = 0.05715;  // Martin & Moyce's 2.25 in
   Settings s;
@@ -280,6 +299,32 @@ TEST_CASE("ns: a 2D column collapse stays stable and its front follows the exper
   const double z = front_position<2>(p, a / 20) / a;
   CHECK(z > 1.22);
   CHECK(z < 1.67);
+}
+
+TEST_CASE("ns: a column collapse on least-squares operators stays stable and moves", "[ns]") {
+  const double a = 0.05715;
+  const double time_scale = std::sqrt(2.0 * gravity / a);
+  {
+    auto sim = column_collapse<2>(20, a, scheme_settings(Scheme::least_squares));
+    const std::size_t fluid = sim.particles().fluid;
+    sim.advance_to(1.0 / time_scale);
+    REQUIRE(all_finite(sim.particles()));
+    CHECK(sim.particles().fluid == fluid);
+    CHECK(sim.totals().unconverged_solves == 0);
+    CHECK(max_speed(sim.particles()) < std::sqrt(2.0 * gravity * 2.0 * a));
+    const double z = front_position<2>(sim.particles(), a / 20) / a;
+    CHECK(z > 1.22);  // the experiment's bracket at T = 1, as above
+    CHECK(z < 1.67);
+  }
+  auto sim = column_collapse<3>(8, a, scheme_settings(Scheme::least_squares));
+  const std::size_t fluid = sim.particles().fluid;
+  sim.advance_to(1.0 / time_scale);
+  REQUIRE(all_finite(sim.particles()));
+  CHECK(sim.particles().fluid == fluid);
+  CHECK(max_speed(sim.particles()) < std::sqrt(2.0 * gravity * 2.0 * a));
+  const double z = front_position<3>(sim.particles(), a / 8) / a;
+  CHECK(z > 1.1);
+  CHECK(z < 1.8);
 }
 
 TEST_CASE("ns: a 3D column collapse stays stable", "[ns]") {

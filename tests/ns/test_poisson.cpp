@@ -195,3 +195,41 @@ TEST_CASE("zero-fill incomplete Cholesky reports a matrix that is not positive d
   factor.compute(a);
   CHECK(factor.info() == Eigen::NumericalIssue);
 }
+
+TEST_CASE("poisson: the compression rule stops at the compression left asked for",
+          "[ns][poisson]") {
+  // A 1D Laplacian's rows (Dirichlet at both ends), each residual entry worth 1e-3 of
+  // compression: asking for 1e-9 root mean square stops there, and no earlier than the
+  // relative rule alone would for the same |r|.
+  const int n = 200;
+  Eigen::SparseMatrix<double, Eigen::RowMajor, int> a(n, n);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, 2.0);
+    if (i > 0) entries.emplace_back(i, i - 1, -1.0);
+    if (i + 1 < n) entries.emplace_back(i, i + 1, -1.0);
+  }
+  a.setFromTriplets(entries.begin(), entries.end());
+  PoissonSystem system;
+  system.matrix = a;
+  system.rhs = Eigen::VectorXd::Ones(n);
+  system.particle_of_unknown.resize(n);
+  system.residual_to_compression = 1e-3;
+  for (const double wanted : {1e-6, 1e-9}) {
+    PoissonSettings settings;
+    settings.preconditioner = Preconditioner::diagonal;
+    settings.compression_tolerance = wanted;
+    PoissonSolver solver(settings);
+    Eigen::VectorXd p = Eigen::VectorXd::Zero(n);
+    const auto report = solver.solve(system, p);
+    CAPTURE(wanted, report.iterations);
+    CHECK(report.converged);
+    const double left =
+        (system.rhs - a * p).norm() * system.residual_to_compression / std::sqrt(double(n));
+    CHECK(left <= 1.01 * wanted);
+    CHECK(report.compression_left == Approx(left).epsilon(0.01));
+  }
+  PoissonSettings bad;
+  bad.compression_tolerance = -1.0;
+  CHECK_THROWS_AS(PoissonSolver(bad), std::invalid_argument);
+}

@@ -268,6 +268,7 @@ void check_numerics(const ns::Settings& got, const ns::Settings& expected) {
   CHECK(got.boundary == expected.boundary);
   CHECK(got.source == expected.source);
   CHECK(got.source_gamma == expected.source_gamma);
+  CHECK(got.operators == expected.operators);
   CHECK(got.solver.preconditioner == expected.solver.preconditioner);
   CHECK(got.solver.relative_tolerance == expected.solver.relative_tolerance);
   CHECK(got.solver.max_iterations == expected.solver.max_iterations);
@@ -294,6 +295,29 @@ TEST_CASE("the ns block takes the default scheme's settings", "[scenario]") {
   CHECK(s.water[0].spacing_m == 0.01);
   REQUIRE(s.output.grid.spacing_m.has_value());
   CHECK(*s.output.grid.spacing_m == Approx(0.02));
+}
+
+TEST_CASE("the least-squares ns scheme is the well-balanced one on least-squares operators",
+          "[scenario]") {
+  const auto got = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "least-squares"; }));
+  ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced);
+  expected.operators = ns::Operators::least_squares;
+  check_numerics(got.ns->settings, expected);
+  // The fits replace the corrected gradient and need the walls' extrapolated pressures.
+  for (const auto& [key, value] : {std::pair{"pressure_gradient", "minimum-pressure"},
+                                   std::pair{"boundary_pressure", "poisson"}}) {
+    CAPTURE(key);
+    try {
+      parse_text(ns_edited([&](json& j) {
+        j["ns"]["scheme"] = "least-squares";
+        j["ns"][key] = value;
+      }));
+      FAIL("the least-squares scheme took " << key << " = " << value);
+    } catch (const ScenarioError& e) {
+      CHECK(e.json_path() == std::string("/ns/") + key);
+      CHECK_THAT(std::string(e.what()), Contains("least-squares"));
+    }
+  }
 }
 
 TEST_CASE("the ns scheme sets every numerical default, and keys override one by one",

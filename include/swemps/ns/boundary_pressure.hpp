@@ -45,12 +45,16 @@ void build_boundary_extrapolation(const neighbors::NeighborList& pairs,
                                   double rho_g, BoundaryExtrapolation& out);
 
 // The Poisson system over the marked fluid particles (unknown[i], i < fluid_count), boundary
-// neighbours eliminated through `boundary`; otherwise as assemble_poisson.
+// neighbours eliminated through `boundary`; otherwise as assemble_poisson. Row i is
+// laplacian_factor sum_j c_ij (p_j - p_i) = b_i over the pairs whose kernel weight is
+// positive, with c_ij the pair's `coefficient`, or its kernel weight where none are given (the
+// MPS Laplacian). The least-squares operators give theirs with factor 1; they may be
+// negative, and then the matrix is not symmetric.
 void assemble_poisson_extrapolated(const neighbors::NeighborList& pairs,
                                    std::span<const double> pair_weight,
                                    std::span<const char> unknown, std::span<const double> source,
                                    const BoundaryExtrapolation& boundary, double laplacian_factor,
-                                   PoissonSystem& out);
+                                   PoissonSystem& out, std::span<const double> coefficient = {});
 
 // Sets p_b for every boundary particle from the fluid pressures in `pressure` (0 where a
 // boundary particle has no fluid neighbour).

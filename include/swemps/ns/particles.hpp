@@ -53,6 +53,17 @@ struct Particles {
   void reorder_fluid(std::span<const std::uint32_t> order);
 };
 
+// |x_j - x_i|^2 of two particles.
+template <int Dim>
+double squared_distance(const Particles<Dim>& p, std::size_t i, std::size_t j) {
+  double r2 = 0.0;
+  for (int d = 0; d < Dim; ++d) {
+    const double delta = p.position[d][j] - p.position[d][i];
+    r2 += delta * delta;
+  }
+  return r2;
+}
+
 extern template struct Particles<2>;
 extern template struct Particles<3>;
 

@@ -29,6 +29,13 @@ struct PoissonSystem {
   Eigen::SparseMatrix<double, Eigen::RowMajor, int> matrix;
   Eigen::VectorXd rhs;
   std::vector<std::uint32_t> particle_of_unknown;  // unknown k is particle particle_of_unknown[k]
+  // Symmetric positive definite (the MPS operators: conjugate gradients) or general (the
+  // least-squares operators: BiCGSTAB).
+  bool symmetric = true;
+  // A residual entry of this system times this is the compression it leaves per step
+  // (PoissonSettings::compression_tolerance): the operators' scale from a row to the
+  // Laplacian, times dt^2 / rho. 0 where unknown (the relative rule is used).
+  double residual_to_compression = 0.0;
 };
 
 // Builds the system. `pairs` is the neighbour list (rows for at least the candidates);
@@ -48,10 +55,12 @@ std::vector<std::int32_t> number_unknowns(std::span<const char> unknown, std::si
 struct PoissonReport {
   int iterations = 0;
   double relative_residual = 0.0;  // |rhs - A p| / |rhs| as the solver estimates it
+  double compression_left = 0.0;   // its root mean square in compression per step, where known
   bool converged = false;
 };
 
-// Conjugate gradients with the chosen preconditioner. Keeps its workspace between calls.
+// Conjugate gradients (a symmetric system) or BiCGSTAB (a general one) with the chosen
+// preconditioner. Keeps its workspace between calls.
 class PoissonSolver {
  public:
   explicit PoissonSolver(const PoissonSettings& settings);

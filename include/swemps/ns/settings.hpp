@@ -67,13 +67,33 @@ enum class BoundaryPressure {
   extrapolated,
 };
 
+// How the Poisson equation's Laplacian and the pressure gradient are discretised
+// (pressure_operators.hpp).
+enum class Operators {
+  // The standard MPS operators with the kernel's lattice constants (method.md section 3),
+  // and the gradient `gradient` names.
+  mps,
+  // Least-squares MPS (Tamai & Koshizuka 2014; least_squares.hpp): each particle's quadratic
+  // fit gives both, exact for quadratics whatever the arrangement. Needs extrapolated walls
+  // and a corrected gradient (the repulsion of corrected-repulsive is kept).
+  least_squares,
+};
+
+// The preconditioner of the Poisson solve: Jacobi, or the zero-fill incomplete factorisation
+// (Cholesky for the symmetric MPS system, LU for the least-squares one).
 enum class Preconditioner { diagonal, incomplete_cholesky };
 
-// The pressure Poisson solve: conjugate gradients (the matrix is symmetric positive definite,
-// see poisson.hpp), warm-started from the previous step's pressure.
+// The pressure Poisson solve: conjugate gradients for the symmetric positive definite MPS
+// system, BiCGSTAB for the least-squares one (poisson.hpp), warm-started from the previous
+// step's pressure.
 struct PoissonSettings {
   Preconditioner preconditioner = Preconditioner::incomplete_cholesky;
   double relative_tolerance = 1e-6;  // |b - A p| / |b|
+  // When > 0, the solve stops instead when the compression the pressure leaves undone is
+  // below this, as a root mean square over the unknowns of |r_i| dt^2 / rho (the residual of
+  // the Laplacian's row in units of the number density's relative change per step: what the
+  // step's divergence condition leaves). 0: the relative rule above.
+  double compression_tolerance = 0.0;
   int max_iterations = 1000;
 };
 
@@ -119,6 +139,7 @@ struct Settings {
   PressureGradient gradient = PressureGradient::minimum_pressure;
   double repulsion_distance_spacings = 0.9;  // corrected_repulsive only
   BoundaryPressure boundary = BoundaryPressure::poisson;
+  Operators operators = Operators::mps;
   PoissonSettings solver;
   std::optional<Collision> collision = Collision{};
   // Fluid particles are re-sorted by cell every this many steps (memory locality only).
@@ -136,6 +157,9 @@ enum class Scheme {
   // Courant 0.4 and a solver tolerance of 1e-3 (measured: the Martin & Moyce front moves by
   // 0.01 a against 1e-6, the water at rest stays within 1.5 % of rho g H).
   well_balanced,
+  // The well-balanced scheme's choices on least-squares operators (Operators::least_squares):
+  // the Laplacian and gradient consistent on any arrangement (docs/ns-dam-break.md).
+  least_squares,
 };
 
 // Settings with every numerical choice of `scheme`; the physical constants, the spacing and
@@ -151,6 +175,7 @@ inline Settings scheme_settings(Scheme scheme) {
   s.boundary = BoundaryPressure::extrapolated;
   s.courant = 0.4;
   s.solver.relative_tolerance = 1e-3;
+  if (scheme == Scheme::least_squares) s.operators = Operators::least_squares;
   return s;
 }
 

@@ -17,14 +17,18 @@
 //     kinds. n*_i < beta n0 marks the free surface (p = 0), where the optional asymmetry
 //     test (settings.hpp) also finds the neighbourhood one-sided.
 //  5. Pressure Poisson equation (poisson.hpp) for fluid and wall particles that are not on
-//     the surface, solved by preconditioned conjugate gradients warm-started from the last
-//     pressure. Negative pressures are set to zero: water does not hold tension here, and
-//     a negative p_j would pull particles together. With BoundaryPressure::extrapolated the
-//     walls are no unknowns: their pressures follow from the fluid's (boundary_pressure.hpp).
-//  6. Pressure gradient (d/n0) sum_j (p_j - p_min,i) x_ij w_ij / r_ij^2 over fluid and
-//     wall neighbours: subtracting the smallest nearby pressure makes every pair repulsive.
-//     The corrected variants (settings.hpp) apply the inverse correction matrix to the sum
-//     of p_j - p_i, with the p_min repulsion only between close pairs or not at all.
+//     the surface, assembled by the scheme's pressure operators (pressure_operators.hpp: the
+//     MPS Laplacian, or the least-squares one) and solved by a preconditioned Krylov method
+//     warm-started from the last pressure. Negative pressures are set to zero: water does
+//     not hold tension here, and a negative p_j would pull particles together. With
+//     BoundaryPressure::extrapolated the walls are no unknowns: their pressures follow from
+//     the fluid's (boundary_pressure.hpp).
+//  6. Pressure gradient, by the same operators: with the MPS ones (d/n0) sum_j (p_j -
+//     p_min,i) x_ij w_ij / r_ij^2 over fluid and wall neighbours (subtracting the smallest
+//     nearby pressure makes every pair repulsive), or the corrected variants (settings.hpp),
+//     which apply the inverse correction matrix to the sum of p_j - p_i, with the p_min
+//     repulsion only between close pairs or not at all; with the least-squares ones each
+//     particle's fit (least_squares_operators.hpp).
 //  7. Correction: u = u* - dt grad p / rho, x = x* + dt (u - u*).
 //  8. Fluid that left the tank's box (through a wall, a breakdown sign) is removed and
 //     counted, never silently kept.
@@ -32,6 +36,7 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <stdexcept>
 #include <vector>
@@ -43,6 +48,7 @@
 #include "swemps/ns/lattice.hpp"
 #include "swemps/ns/particles.hpp"
 #include "swemps/ns/poisson.hpp"
+#include "swemps/ns/pressure_operators.hpp"
 #include "swemps/ns/settings.hpp"
 #include "swemps/swe/state_record.hpp"
 
@@ -134,6 +140,9 @@ class Simulation {
   void solve_pressure(double dt);
   void correct(double dt);
   void remove_escaped();
+  StepGeometry<Dim> geometry() const {
+    return {particles_, pairs_, pair_weight_, settings_, pressure_lattice_};
+  }
 
   Particles<Dim> particles_;
   Settings settings_;
@@ -142,6 +151,7 @@ class Simulation {
   LatticeConstants pressure_lattice_, velocity_lattice_;
   double search_radius_ = 0.0;
   PoissonSolver solver_;
+  std::unique_ptr<PressureOperators<Dim>> operators_;
 
   double time_ = 0.0;
   StepReport last_;
