@@ -129,44 +129,7 @@ bool fit_quadratic(std::span<const FitNeighbour<Dim>> neighbours, double scale_m
   return true;
 }
 
-template <int Dim>
-bool fit_linear(std::span<const FitNeighbour<Dim>> neighbours, double scale_m,
-                std::span<std::array<double, Dim>> out) {
-  check_sizes(neighbours.size(), out.size());
-  const double inverse_scale = 1.0 / scale_m;
-  std::array<std::array<double, Dim>, Dim> moment{};
-  for (const auto& j : neighbours) {
-    if (!(j.weight > 0.0)) continue;
-    for (int r = 0; r < Dim; ++r) {
-      const double wq = j.weight * j.offset[r] * inverse_scale;
-      for (int c = 0; c <= r; ++c) moment[r][c] += wq * j.offset[c] * inverse_scale;
-    }
-  }
-  if (!factor_moment<Dim>(moment)) return false;
-  std::array<std::array<double, Dim>, Dim> inverse{};  // row d: M^-1 e_d / r_s
-  for (int d = 0; d < Dim; ++d) {
-    inverse[d][d] = 1.0;
-    solve_moment<Dim>(moment, inverse[d]);
-    for (double& v : inverse[d]) v *= inverse_scale;
-  }
-  for (std::size_t m = 0; m < neighbours.size(); ++m) {
-    const auto& j = neighbours[m];
-    for (int d = 0; d < Dim; ++d) {
-      double g = 0.0;
-      if (j.weight > 0.0) {
-        for (int k = 0; k < Dim; ++k) g += inverse[d][k] * j.offset[k] * inverse_scale * j.weight;
-      }
-      out[m][d] = g;
-    }
-  }
-  return true;
-}
-
 template bool fit_quadratic<2>(std::span<const FitNeighbour<2>>, double, std::span<FitWeights<2>>);
 template bool fit_quadratic<3>(std::span<const FitNeighbour<3>>, double, std::span<FitWeights<3>>);
-template bool fit_linear<2>(std::span<const FitNeighbour<2>>, double,
-                            std::span<std::array<double, 2>>);
-template bool fit_linear<3>(std::span<const FitNeighbour<3>>, double,
-                            std::span<std::array<double, 3>>);
 
 }  // namespace swemps::ns

@@ -25,7 +25,8 @@
 // Stabilisation: a neighbourhood that does not span the quadratics (neighbours on one line,
 // a splash droplet's handful) makes M_i singular. Such a particle is not fitted to degree 2
 // (fit_quadratic() returns false, judged by the pivots of M_i's L D L^T factors) and the caller falls back to a
-// lower-order operator. What the pressure operators do with the fits, and where they do not
+// lower-order operator (the corrected gradient, mps_operators.hpp, and the MPS Laplacian).
+// What the pressure operators do with the fits, and where they do not
 // trust them (the free surface), is in least_squares_operators.hpp.
 
 #include <array>
@@ -64,20 +65,9 @@ template <int Dim>
 bool fit_quadratic(std::span<const FitNeighbour<Dim>> neighbours, double scale_m,
                    std::span<FitWeights<Dim>> out);
 
-// The first-order fit (basis [x, z] or [x, y, z]: Khayyer & Gotoh's corrected gradient, the
-// LSMPS of degree 1): gradient weights only, exact for linear fields. Returns false when the
-// moment matrix is near singular (neighbours on one line or plane), as above.
-template <int Dim>
-bool fit_linear(std::span<const FitNeighbour<Dim>> neighbours, double scale_m,
-                std::span<std::array<double, Dim>> out);
-
 extern template bool fit_quadratic<2>(std::span<const FitNeighbour<2>>, double,
                                       std::span<FitWeights<2>>);
 extern template bool fit_quadratic<3>(std::span<const FitNeighbour<3>>, double,
                                       std::span<FitWeights<3>>);
-extern template bool fit_linear<2>(std::span<const FitNeighbour<2>>, double,
-                                   std::span<std::array<double, 2>>);
-extern template bool fit_linear<3>(std::span<const FitNeighbour<3>>, double,
-                                   std::span<std::array<double, 3>>);
 
 }  // namespace swemps::ns
