@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "swemps/ns/aggregation_multigrid.hpp"
 #include "swemps/ns/incomplete_cholesky.hpp"
 #include "swemps/ns/incomplete_lu.hpp"
 
@@ -107,19 +108,80 @@ struct PoissonSolver::Impl {
       cholesky;
   Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> general_diagonal;
   Eigen::BiCGSTAB<Matrix, ZeroFillIncompleteLU> general_lu;
+  Eigen::ConjugateGradient<Matrix, Eigen::Lower | Eigen::Upper, AggregationMultigrid> multigrid;
+  Eigen::BiCGSTAB<Matrix, AggregationMultigrid> general_multigrid;
+
+  // The multigrid setup kept across solves (PoissonSettings::multigrid_setup_solves): the
+  // unknown each particle was at the last full setup, and what that solve took.
+  struct KeptSetup {
+    bool valid = false;
+    bool symmetric = true;
+    std::vector<std::int32_t> unknown_of_particle;
+    int iterations = 0;  // of the solve that set up
+    int solves = 0;      // since then, that one included
+  } kept;
+
+  // Asks `preconditioner` to keep its setup for `system` when the rule allows it.
+  void offer_kept_setup(const PoissonSystem& system, AggregationMultigrid& preconditioner,
+                        int last_iterations) {
+    if (!kept.valid || kept.symmetric != system.symmetric ||
+        kept.solves >= settings.multigrid_setup_solves ||
+        last_iterations > 2 * kept.iterations + 2) {
+      return;
+    }
+    std::vector<std::int32_t> setup_row(system.particle_of_unknown.size(), -1);
+    for (std::size_t k = 0; k < setup_row.size(); ++k) {
+      const std::uint32_t i = system.particle_of_unknown[k];
+      if (i < kept.unknown_of_particle.size()) setup_row[k] = kept.unknown_of_particle[i];
+    }
+    preconditioner.keep_setup_for_next(std::move(setup_row));
+  }
+  void note_setup(const PoissonSystem& system, const AggregationMultigrid& preconditioner,
+                  int iterations) {
+    if (preconditioner.kept_setup()) {
+      ++kept.solves;
+      return;
+    }
+    kept.valid = true;
+    kept.symmetric = system.symmetric;
+    kept.iterations = iterations;
+    kept.solves = 1;
+    std::uint32_t highest = 0;
+    for (const std::uint32_t i : system.particle_of_unknown) highest = std::max(highest, i);
+    kept.unknown_of_particle.assign(system.particle_of_unknown.empty() ? 0 : highest + 1u, -1);
+    for (std::size_t k = 0; k < system.particle_of_unknown.size(); ++k) {
+      kept.unknown_of_particle[system.particle_of_unknown[k]] = static_cast<std::int32_t>(k);
+    }
+  }
+  int last_iterations = 0;
 };
 
 PoissonSolver::PoissonSolver(const PoissonSettings& settings) : impl_(std::make_unique<Impl>()) {
   if (!(settings.relative_tolerance > 0.0) || settings.max_iterations < 1 ||
-      !(settings.compression_tolerance >= 0.0)) {
+      !(settings.compression_tolerance >= 0.0) || settings.multigrid_setup_solves < 1) {
     throw std::invalid_argument(
-        "poisson solver: tolerances must be > 0 (compression >= 0), iterations >= 1");
+        "poisson solver: tolerances must be > 0 (compression >= 0), iterations >= 1, "
+        "multigrid setup solves >= 1");
   }
   impl_->settings = settings;
 }
 PoissonSolver::~PoissonSolver() = default;
 PoissonSolver::PoissonSolver(PoissonSolver&&) noexcept = default;
 PoissonSolver& PoissonSolver::operator=(PoissonSolver&&) noexcept = default;
+
+void PoissonSolver::follow_renumbering(std::span<const std::uint32_t> old_of_new) {
+  auto& kept = impl_->kept;
+  if (!kept.valid) return;
+  std::vector<std::int32_t> renumbered(std::max(kept.unknown_of_particle.size(), old_of_new.size()),
+                                       -1);
+  for (std::size_t k = 0; k < renumbered.size(); ++k) {
+    const std::size_t old = k < old_of_new.size() ? old_of_new[k] : k;
+    if (old < kept.unknown_of_particle.size()) renumbered[k] = kept.unknown_of_particle[old];
+  }
+  kept.unknown_of_particle = std::move(renumbered);
+}
+
+void PoissonSolver::forget_kept_setup() { impl_->kept.valid = false; }
 
 PoissonReport PoissonSolver::solve(const PoissonSystem& system, Eigen::VectorXd& guess) {
   PoissonReport report;
@@ -136,11 +198,11 @@ PoissonReport PoissonSolver::solve(const PoissonSystem& system, Eigen::VectorXd&
   const double root_n = std::sqrt(static_cast<double>(system.rhs.size()));
   const bool by_compression =
       impl_->settings.compression_tolerance > 0.0 && system.residual_to_compression > 0.0;
-  const double tolerance =
-      by_compression ? std::clamp(impl_->settings.compression_tolerance * root_n /
-                                      (system.residual_to_compression * rhs_norm),
-                                  1e-14, 0.5)
-                     : impl_->settings.relative_tolerance;
+  const double tolerance = by_compression
+                               ? std::clamp(impl_->settings.compression_tolerance * root_n /
+                                                (system.residual_to_compression * rhs_norm),
+                                            1e-14, 0.5)
+                               : impl_->settings.relative_tolerance;
   auto run = [&](auto& cg) {
     cg.setTolerance(tolerance);
     cg.setMaxIterations(impl_->settings.max_iterations);
@@ -154,17 +216,30 @@ PoissonReport PoissonSolver::solve(const PoissonSystem& system, Eigen::VectorXd&
     report.compression_left = cg.error() * rhs_norm * system.residual_to_compression / root_n;
     report.converged = cg.info() == Eigen::Success;
   };
-  const bool diagonal = impl_->settings.preconditioner == Preconditioner::diagonal;
-  if (!system.symmetric) {
-    if (diagonal) {
-      run(impl_->general_diagonal);
-    } else {
-      run(impl_->general_lu);
+  switch (impl_->settings.preconditioner) {
+    case Preconditioner::diagonal:
+      system.symmetric ? run(impl_->diagonal) : run(impl_->general_diagonal);
+      break;
+    case Preconditioner::incomplete_cholesky:
+      system.symmetric ? run(impl_->cholesky) : run(impl_->general_lu);
+      break;
+    case Preconditioner::multigrid: {
+      auto multigrid = [&](auto& krylov) {
+        const Eigen::VectorXd start = guess;
+        impl_->offer_kept_setup(system, krylov.preconditioner(), impl_->last_iterations);
+        run(krylov);
+        if (!report.converged && krylov.preconditioner().kept_setup()) {
+          // The kept coarse levels no longer fit: set up anew and solve again.
+          guess = start;
+          run(krylov);
+        }
+        report.setup_kept = krylov.preconditioner().kept_setup();
+        impl_->note_setup(system, krylov.preconditioner(), report.iterations);
+        impl_->last_iterations = report.iterations;
+      };
+      system.symmetric ? multigrid(impl_->multigrid) : multigrid(impl_->general_multigrid);
+      break;
     }
-  } else if (diagonal) {
-    run(impl_->diagonal);
-  } else {
-    run(impl_->cholesky);
   }
   return report;
 }

@@ -177,7 +177,9 @@ void Simulation<Dim>::sort_fluid_by_cell() {
   neighbors::CellList<Dim> cells;
   cells.build(coords, search_radius_);
   const auto order = cells.order();
-  particles_.reorder_fluid(std::vector<std::uint32_t>(order.begin(), order.end()));
+  const std::vector<std::uint32_t> old_of_new(order.begin(), order.end());
+  particles_.reorder_fluid(old_of_new);
+  solver_.follow_renumbering(old_of_new);
 }
 
 template <int Dim>
@@ -460,6 +462,7 @@ void Simulation<Dim>::remove_escaped() {
   }
   if (count == 0) return;
   particles_.remove_fluid(gone);
+  solver_.forget_kept_setup();
   totals_.lost_particles += count;
   if (particles_.fluid == 0) throw SimulationError("ns step: every fluid particle left the tank");
 }

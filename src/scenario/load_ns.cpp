@@ -65,18 +65,23 @@ ns::KernelChoice read_kernel(const json& v, const std::string& path, ns::KernelC
 
 // `s` holds the scheme's solver settings: what the scene leaves out.
 ns::PoissonSettings read_solver(const json* v, const std::string& path, ns::PoissonSettings s) {
-  const Object o(v ? *v : empty_object(), path, {"preconditioner", "tolerance", "max_iterations"},
-                 "an object");
+  const Object o(v ? *v : empty_object(), path,
+                 {"preconditioner", "tolerance", "max_iterations", "setup_solves"}, "an object");
   const std::string_view preconditioner =
-      choice(o, "preconditioner", {"incomplete-cholesky", "diagonal"},
-             s.preconditioner == ns::Preconditioner::diagonal ? "diagonal" : "incomplete-cholesky");
-  s.preconditioner = preconditioner == "diagonal" ? ns::Preconditioner::diagonal
-                                                  : ns::Preconditioner::incomplete_cholesky;
+      choice(o, "preconditioner", {"incomplete-cholesky", "diagonal", "multigrid"},
+             ns::preconditioner_name(s.preconditioner));
+  for (const auto p : {ns::Preconditioner::diagonal, ns::Preconditioner::incomplete_cholesky,
+                       ns::Preconditioner::multigrid}) {
+    if (preconditioner == ns::preconditioner_name(p)) s.preconditioner = p;
+  }
   s.relative_tolerance =
       in_range(o, "tolerance", 0.0, true, 1.0, true,
                "the relative residual |b - A p| / |b| the solve stops at", s.relative_tolerance);
   s.max_iterations = whole_number(o, "max_iterations", 1, 1000000,
                                   "conjugate-gradient iterations per solve", s.max_iterations);
+  s.multigrid_setup_solves =
+      whole_number(o, "setup_solves", 1, 1000000, "solves that one multigrid setup serves",
+                   s.multigrid_setup_solves);
   return s;
 }
 

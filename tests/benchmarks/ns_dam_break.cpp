@@ -222,8 +222,11 @@ Options parse(int argc, char** argv) {
         s.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;
       } else if (value == "diagonal") {
         s.solver.preconditioner = ns::Preconditioner::diagonal;
+      } else if (value == "multigrid") {
+        s.solver.preconditioner = ns::Preconditioner::multigrid;
       } else {
-        throw std::invalid_argument("--preconditioner is incomplete-cholesky or diagonal");
+        throw std::invalid_argument(
+            "--preconditioner is incomplete-cholesky, diagonal or multigrid");
       }
     } else if (key == "--tolerance") {
       s.solver.relative_tolerance = to_number(key, value);

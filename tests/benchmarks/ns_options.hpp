@@ -6,7 +6,8 @@
 // later keys override), operators=mps|least-squares, source=number-density|mixed, gamma=G,
 // gradient=minimum|corrected|corrected-repulsive, boundary=poisson|extrapolated, repulsion=R,
 // asymmetry=A, kernel=NAME, support=S, beta=B, courant=C, tolerance=T, compression=E
-// (solver.compression_tolerance), preconditioner=ic|diagonal, collision=off.
+// (solver.compression_tolerance), preconditioner=ic|diagonal|multigrid, multigrid-setup=N
+// (solver.multigrid_setup_solves), collision=off.
 #pragma once
 
 #include <cstdlib>
@@ -63,10 +64,18 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
     s.solver.relative_tolerance = number;
   } else if (key == "compression") {
     s.solver.compression_tolerance = number;
+  } else if (key == "multigrid-setup") {
+    s.solver.multigrid_setup_solves = static_cast<int>(number);
   } else if (key == "preconditioner") {
-    if (value != "ic" && value != "diagonal") return false;
-    s.solver.preconditioner = value == "diagonal" ? ns::Preconditioner::diagonal
-                                                  : ns::Preconditioner::incomplete_cholesky;
+    if (value == "ic") {
+      s.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;
+    } else if (value == "diagonal") {
+      s.solver.preconditioner = ns::Preconditioner::diagonal;
+    } else if (value == "multigrid") {
+      s.solver.preconditioner = ns::Preconditioner::multigrid;
+    } else {
+      return false;
+    }
   } else if (key == "collision") {
     if (value == "off") s.collision.reset();
   } else {

@@ -1,11 +1,12 @@
 // The pressure Poisson solve of the 2D dam break with 20,000 fluid particles (the scene of
 // swemps-ns-speed), solved by the project's conjugate gradients with the zero-fill
 // incomplete Cholesky and with the alternatives issue 20 names: conjugate gradients
-// preconditioned by algebraic multigrid (hypre's BoomerAMG) and a sparse Cholesky
-// factorisation (CHOLMOD). The systems are the run's own, taken at several times, each with
-// the starting guess the run gives it (the pressure of the step before). Every method is
-// timed as one step would use it: the matrix changes every step, so each builds its
-// preconditioner or factor anew. Prints numbers; asserts nothing (docs/performance.md).
+// preconditioned by algebraic multigrid (the project's smoothed aggregation, its setup timed
+// apart, and hypre's BoomerAMG) and a sparse Cholesky factorisation (CHOLMOD). The systems are the
+// run's own, taken at several times, each with the starting guess the run gives it (the pressure of
+// the step before). Every method is timed as one step would use it: the matrix changes every step,
+// so each builds its preconditioner or factor anew. Prints numbers; asserts nothing
+// (docs/performance.md).
 //
 //   OMP_NUM_THREADS=1 swemps-ns-solvers [key=value ...]   (keys of ns_options.hpp)
 //
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "ns_options.hpp"
+#include "swemps/ns/aggregation_multigrid.hpp"
 #include "swemps/ns/poisson.hpp"
 #include "swemps/ns/simulation.hpp"
 #include "swemps/ns/tank.hpp"
@@ -80,9 +82,13 @@ Row conjugate_gradients(const ns::PoissonSystem& system, const Eigen::VectorXd& 
   settings.preconditioner = preconditioner;
   ns::PoissonSolver solver(settings);
   Row row;
-  row.method = preconditioner == ns::Preconditioner::incomplete_cholesky
-                   ? "CG + incomplete Cholesky IC(0) (today)"
-                   : "CG + diagonal";
+  const char* krylov = system.symmetric ? "CG" : "BiCGSTAB";
+  row.method =
+      std::string(krylov) +
+      (preconditioner == ns::Preconditioner::incomplete_cholesky
+           ? (system.symmetric ? " + incomplete Cholesky IC(0)" : " + incomplete LU ILU(0)")
+       : preconditioner == ns::Preconditioner::diagonal ? " + diagonal"
+                                                        : " + aggregation multigrid");
   row.solve_ms = 1e3 * fastest(kRepeats, [&] {
                    solution = guess;
                    row.iterations = solver.solve(system, solution).iterations;
@@ -264,6 +270,20 @@ int main(int argc, char** argv) {
       print(row);
     };
     report(conjugate_gradients(system, guess, s.solver, ns::Preconditioner::diagonal, solution));
+    {
+      // The multigrid's setup alone, and its levels.
+      ns::AggregationMultigrid multigrid;
+      Row row =
+          conjugate_gradients(system, guess, s.solver, ns::Preconditioner::multigrid, solution);
+      row.setup_ms = 1e3 * fastest(kRepeats, [&] { multigrid.compute(system.matrix); });
+      row.solve_ms -= row.setup_ms;
+      report(row);
+      std::printf("    levels (unknowns / entries):");
+      for (const auto& level : multigrid.level_sizes()) {
+        std::printf(" %d / %d", level.unknowns, level.entries);
+      }
+      std::printf("\n");
+    }
 #ifdef SWEMPS_HAVE_HYPRE
     report(boomer_amg(system, guess, s.solver.relative_tolerance, solution));
 #else

@@ -45,12 +45,12 @@ int main(int argc, char** argv) {
   Simulation<2> sim(fill_tank<2>(tank), s, {-solid, -solid}, {3.216 + solid, 1.2 + solid});
   const auto& p = sim.particles();
   std::printf(
-      "fluid %zu, wall %zu, dummy %zu; threads %d; tolerance %g, courant %g, %s operators, %s\n",
+      "fluid %zu, wall %zu, dummy %zu; threads %d; tolerance %g, courant %g, %s operators, %s + "
+      "%s\n",
       p.fluid, p.wall, p.dummy, omp_get_max_threads(), s.solver.relative_tolerance, s.courant,
       s.operators == Operators::least_squares ? "least-squares" : "MPS",
-      s.solver.preconditioner == Preconditioner::diagonal ? "diagonal"
-      : s.operators == Operators::least_squares           ? "BiCGSTAB, incomplete LU"
-                                                          : "CG, incomplete Cholesky");
+      s.operators == Operators::least_squares ? "BiCGSTAB" : "CG",
+      preconditioner_name(s.solver.preconditioner));
 
   const auto wall_start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();

@@ -533,7 +533,7 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
   CHECK_THAT(r.output, Catch::Contains("model ns numerics: kernel sheu-quartic at 2.1 l0, "
                                        "source mixed (gamma 0.05), gradient corrected-repulsive"));
   CHECK_THAT(r.output, Catch::Contains("wall pressures extrapolated, Courant 0.4"));
-  CHECK_THAT(r.output, Catch::Contains("Poisson: conjugate gradients, incomplete-Cholesky "
+  CHECK_THAT(r.output, Catch::Contains("Poisson: conjugate gradients, multigrid "
                                        "preconditioner, tolerance 0.001"));
   CHECK_THAT(r.output, Catch::Contains("0 unconverged solves"));
   CHECK_THAT(r.output, Catch::Contains("time per phase: sort"));
@@ -605,7 +605,10 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
       // front back by a fraction of a spacing.
       CHECK(row[2] >= t.rows[k - 1][2] - 0.005);
       CHECK(row[2] < 0.4);
-      CHECK(row[4] >= 1.0);
+      // A number: the step solved. Its count may be 0: with 100 unknowns the multigrid is one
+      // level factorised whole, so its first update converges, which Eigen's conjugate
+      // gradients count as no iteration.
+      CHECK(row[4] >= 0.0);
       CHECK(row[5] <= 1e-3);
       // The submerged fluid particles: the walls' pressures are extrapolated, not unknowns.
       CHECK(row[6] >= 70.0);

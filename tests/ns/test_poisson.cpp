@@ -103,8 +103,8 @@ TEST_CASE(
     "[ns][poisson]") {
   const auto [name, support] = GENERATE(std::pair{"standard", 2.1}, std::pair{"sheu-quartic", 2.0},
                                         std::pair{"hyperbolic", 4.0});
-  const auto preconditioner =
-      GENERATE(Preconditioner::incomplete_cholesky, Preconditioner::diagonal);
+  const auto preconditioner = GENERATE(Preconditioner::incomplete_cholesky,
+                                       Preconditioner::diagonal, Preconditioner::multigrid);
   CAPTURE(name, support, static_cast<int>(preconditioner));
   swemps::kernels::KernelSpec spec{*swemps::kernels::kernel_type_from_name(name), 4.0, 1.0};
   const auto kernel = swemps::kernels::make_kernel<2>(spec, support);
@@ -138,7 +138,13 @@ TEST_CASE(
   Eigen::VectorXd guess = Eigen::VectorXd::Zero(p.size());
   const auto report = solver.solve(system, guess);
   CHECK(report.converged);
-  CHECK(report.iterations > 0);
+  if (preconditioner == Preconditioner::multigrid) {
+    // A patch this small is one level, factorised whole: the first update is exact (Eigen's
+    // conjugate gradients count an update that converges as no iteration).
+    CHECK(report.iterations <= 1);
+  } else {
+    CHECK(report.iterations > 0);
+  }
   // Relative residual 1e-13 and a condition number of order 1e2-1e3 for this patch: the
   // pressure is recovered to well under 1e-9 of its size.
   CHECK((guess - p).norm() <= 1e-9 * p.norm());

@@ -302,6 +302,7 @@ TEST_CASE("the least-squares ns scheme is the well-balanced one on least-squares
   const auto got = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "least-squares"; }));
   ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced);
   expected.operators = ns::Operators::least_squares;
+  expected.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;  // its incomplete LU
   check_numerics(got.ns->settings, expected);
   // The fits replace the corrected gradient and need the walls' extrapolated pressures.
   for (const auto& [key, value] : {std::pair{"pressure_gradient", "minimum-pressure"},
@@ -401,7 +402,8 @@ TEST_CASE("every ns key arrives as given", "[scenario]") {
       "free_surface_asymmetry": 0.25, "pressure_gradient": "corrected-repulsive",
       "repulsion_distance": 0.8,
       "boundary_pressure": "extrapolated",
-      "solver": {"preconditioner": "diagonal", "tolerance": 1e-8, "max_iterations": 300},
+      "solver": {"preconditioner": "diagonal", "tolerance": 1e-8, "max_iterations": 300,
+                 "setup_solves": 7},
       "collision": {"distance": 0.4, "restitution": 0.5}
     })");
   }));
@@ -430,6 +432,7 @@ TEST_CASE("every ns key arrives as given", "[scenario]") {
   CHECK(got.solver.preconditioner == ns::Preconditioner::diagonal);
   CHECK(got.solver.relative_tolerance == 1e-8);
   CHECK(got.solver.max_iterations == 300);
+  CHECK(got.solver.multigrid_setup_solves == 7);
   REQUIRE(got.collision.has_value());
   CHECK(got.collision->distance_spacings == 0.4);
   CHECK(got.collision->restitution == 0.5);

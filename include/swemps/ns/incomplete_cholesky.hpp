@@ -15,14 +15,14 @@
 
 #include <vector>
 
-#include "swemps/ns/zero_fill_preconditioner.hpp"
+#include "swemps/ns/row_preconditioner.hpp"
 
 namespace swemps::ns {
 
 // info() is NumericalIssue when a pivot was not positive (the matrix was not an M-matrix).
-class ZeroFillIncompleteCholesky : public ZeroFillPreconditioner<ZeroFillIncompleteCholesky> {
+class ZeroFillIncompleteCholesky : public RowPreconditioner<ZeroFillIncompleteCholesky> {
  private:
-  friend class ZeroFillPreconditioner<ZeroFillIncompleteCholesky>;
+  friend class RowPreconditioner<ZeroFillIncompleteCholesky>;
   void factorize_rows(int n, const int* row_start, const int* column, const double* value);
   void solve_in_place(double* x) const;  // x = (L L^T)^-1 x
   Eigen::Index size() const { return static_cast<Eigen::Index>(diagonal_.size()); }

@@ -9,12 +9,12 @@
 
 #include <vector>
 
-#include "swemps/ns/zero_fill_preconditioner.hpp"
+#include "swemps/ns/row_preconditioner.hpp"
 
 namespace swemps::ns {
 
 // info() is NumericalIssue when a value was not finite or a row had no diagonal entry.
-class ZeroFillIncompleteLU : public ZeroFillPreconditioner<ZeroFillIncompleteLU> {
+class ZeroFillIncompleteLU : public RowPreconditioner<ZeroFillIncompleteLU> {
  public:
   // Pivots below least_pivot_share of their row's absolute sum (or negative) in the last
   // factorisation, each replaced by that sum.
@@ -22,7 +22,7 @@ class ZeroFillIncompleteLU : public ZeroFillPreconditioner<ZeroFillIncompleteLU>
   static constexpr double least_pivot_share = 1e-3;
 
  private:
-  friend class ZeroFillPreconditioner<ZeroFillIncompleteLU>;
+  friend class RowPreconditioner<ZeroFillIncompleteLU>;
   void factorize_rows(int n, const int* row_start, const int* column, const double* value);
   void solve_in_place(double* x) const;  // x = (L U)^-1 x
   Eigen::Index size() const { return static_cast<Eigen::Index>(diagonal_.size()); }

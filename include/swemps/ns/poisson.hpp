@@ -57,6 +57,7 @@ struct PoissonReport {
   double relative_residual = 0.0;  // |rhs - A p| / |rhs| as the solver estimates it
   double compression_left = 0.0;   // its root mean square in compression per step, where known
   bool converged = false;
+  bool setup_kept = false;  // the multigrid kept an earlier step's coarse levels
 };
 
 // Conjugate gradients (a symmetric system) or BiCGSTAB (a general one) with the chosen
@@ -71,6 +72,13 @@ class PoissonSolver {
   // Solves system.matrix p = system.rhs starting from `guess` (one value per unknown);
   // the solution replaces it. A zero right-hand side gives p = 0 at once.
   PoissonReport solve(const PoissonSystem& system, Eigen::VectorXd& guess);
+
+  // A multigrid setup kept across solves follows the unknowns by particle: the caller says
+  // when the particles are renumbered. `old_of_new[k]` is the former index of particle k
+  // (particles from old_of_new.size() on keep theirs); forget_kept_setup() when the
+  // numbering changed otherwise (particles removed).
+  void follow_renumbering(std::span<const std::uint32_t> old_of_new);
+  void forget_kept_setup();
 
  private:
   struct Impl;

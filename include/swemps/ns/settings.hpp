@@ -79,9 +79,10 @@ enum class Operators {
   least_squares,
 };
 
-// The preconditioner of the Poisson solve: Jacobi, or the zero-fill incomplete factorisation
-// (Cholesky for the symmetric MPS system, LU for the least-squares one).
-enum class Preconditioner { diagonal, incomplete_cholesky };
+// The preconditioner of the Poisson solve: Jacobi, the zero-fill incomplete factorisation
+// (Cholesky for the symmetric MPS system, LU for the least-squares one), or one V-cycle of
+// smoothed-aggregation multigrid (aggregation_multigrid.hpp).
+enum class Preconditioner { diagonal, incomplete_cholesky, multigrid };
 
 // The pressure Poisson solve: conjugate gradients for the symmetric positive definite MPS
 // system, BiCGSTAB for the least-squares one (poisson.hpp), warm-started from the previous
@@ -95,6 +96,13 @@ struct PoissonSettings {
   // step's divergence condition leaves). 0: the relative rule above.
   double compression_tolerance = 0.0;
   int max_iterations = 1000;
+  // The multigrid preconditioner's coarse levels serve at most this many solves, the one
+  // that built them included (1: set up for every solve), and are rebuilt sooner when
+  // particles are removed or a solve takes more than twice the iterations (and two more) of
+  // the one that built them. 5: kept over 20, they let the 3D tank at rest at 2.1 l0 go
+  // unstable by 4 s (19.9 % against 3.8 %), for 13 % less run time on the 20,000-particle dam
+  // break (docs/performance.md).
+  int multigrid_setup_solves = 5;
 };
 
 // The scene's name of each gradient (docs/scenario.md), for reading scenes and for logs.
@@ -102,6 +110,13 @@ constexpr const char* pressure_gradient_name(PressureGradient g) {
   return g == PressureGradient::corrected             ? "corrected"
          : g == PressureGradient::corrected_repulsive ? "corrected-repulsive"
                                                       : "minimum-pressure";
+}
+
+// The scene's name of each preconditioner (docs/scenario.md), for reading scenes and for logs.
+constexpr const char* preconditioner_name(Preconditioner p) {
+  return p == Preconditioner::diagonal              ? "diagonal"
+         : p == Preconditioner::incomplete_cholesky ? "incomplete-cholesky"
+                                                    : "multigrid";
 }
 
 // Koshizuka's particle collision: two fluid particles closer than distance_spacings l_0 and
@@ -155,10 +170,15 @@ enum class Scheme {
   // docs/performance.md): Sheu's quartic kernel at 2.1 l0, the mixed source, the corrected
   // gradient with close-range repulsion, the surface asymmetry test, extrapolated walls,
   // Courant 0.4 and a solver tolerance of 1e-3 (measured: the Martin & Moyce front moves by
-  // 0.01 a against 1e-6, the water at rest stays within 1.5 % of rho g H).
+  // 0.01 a against 1e-6, the water at rest stays within 1.5 % of rho g H), and the multigrid
+  // preconditioner with its setup kept over 5 solves (its smooth pressure is what multigrid
+  // is for: 4 iterations a step against 33, the 20,000-particle dam break 1.3-1.5 times
+  // faster; docs/performance.md).
   well_balanced,
   // The well-balanced scheme's choices on least-squares operators (Operators::least_squares):
-  // the Laplacian and gradient consistent on any arrangement (docs/ns-dam-break.md).
+  // the Laplacian and gradient consistent on any arrangement (docs/ns-dam-break.md), but
+  // with the incomplete LU: under the multigrid its dam break's splash ran away (measured,
+  // docs/performance.md).
   least_squares,
 };
 
@@ -175,7 +195,11 @@ inline Settings scheme_settings(Scheme scheme) {
   s.boundary = BoundaryPressure::extrapolated;
   s.courant = 0.4;
   s.solver.relative_tolerance = 1e-3;
-  if (scheme == Scheme::least_squares) s.operators = Operators::least_squares;
+  s.solver.preconditioner = Preconditioner::multigrid;
+  if (scheme == Scheme::least_squares) {
+    s.operators = Operators::least_squares;
+    s.solver.preconditioner = Preconditioner::incomplete_cholesky;
+  }
   return s;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // What Eigen's iterative solvers (ConjugateGradient, BiCGSTAB) ask of a preconditioner, for
-// the zero-fill incomplete factorisations on a matrix's own compressed rows
-// (incomplete_cholesky.hpp, incomplete_lu.hpp). `Derived` provides
+// the preconditioners built from a matrix's own compressed rows: the zero-fill incomplete
+// factorisations (incomplete_cholesky.hpp, incomplete_lu.hpp) and the aggregation multigrid
+// (aggregation_multigrid.hpp). `Derived` provides
 //   void factorize_rows(int n, const int* row_start, const int* column, const double* value);
 //   void solve_in_place(double* x) const;   // x = (approximate A)^-1 x
 //   Eigen::Index size() const;
@@ -13,7 +14,7 @@
 namespace swemps::ns {
 
 template <class Derived>
-class ZeroFillPreconditioner {
+class RowPreconditioner {
  public:
   using StorageIndex = int;
   enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic };
