@@ -143,12 +143,6 @@ std::vector<Stop> stops_of(const scenario::Output& output, double end_time_s) {
   return merged;
 }
 
-const char* preconditioner_log_name(ns::Preconditioner p) {
-  return p == ns::Preconditioner::diagonal              ? "diagonal"
-         : p == ns::Preconditioner::incomplete_cholesky ? "incomplete-Cholesky"
-                                                        : "multigrid";
-}
-
 // What happened between two output times, for the debug line at each.
 struct Interval {
   std::size_t steps = 0;
@@ -484,7 +478,7 @@ RunReport run_in(const scenario::Scenario& scene, const RunContext& context,
       "Poisson: {}, {} preconditioner, tolerance {:.3g}, at most {} iterations: "
       "{:.1f} iterations per step on average, {} at most, {} unconverged solves",
       settings.operators == ns::Operators::least_squares ? "BiCGSTAB" : "conjugate gradients",
-      preconditioner_log_name(settings.solver.preconditioner), settings.solver.relative_tolerance,
+      ns::preconditioner_name(settings.solver.preconditioner), settings.solver.relative_tolerance,
       settings.solver.max_iterations, per_step, totals.max_poisson_iterations,
       totals.unconverged_solves);
   const auto& t = totals.phases;

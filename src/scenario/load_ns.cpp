@@ -70,10 +70,7 @@ ns::PoissonSettings read_solver(const json* v, const std::string& path, ns::Pois
   const std::string_view preconditioner =
       choice(o, "preconditioner", {"incomplete-cholesky", "diagonal", "multigrid"},
              ns::preconditioner_name(s.preconditioner));
-  for (const auto p : {ns::Preconditioner::diagonal, ns::Preconditioner::incomplete_cholesky,
-                       ns::Preconditioner::multigrid}) {
-    if (preconditioner == ns::preconditioner_name(p)) s.preconditioner = p;
-  }
+  s.preconditioner = *ns::preconditioner_from_name(preconditioner);  // choice() checked it
   s.relative_tolerance =
       in_range(o, "tolerance", 0.0, true, 1.0, true,
                "the relative residual |b - A p| / |b| the solve stops at", s.relative_tolerance);

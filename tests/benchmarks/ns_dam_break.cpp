@@ -218,16 +218,12 @@ Options parse(int argc, char** argv) {
         throw std::invalid_argument("--boundary is poisson or extrapolated");
       }
     } else if (key == "--preconditioner") {
-      if (value == "incomplete-cholesky") {
-        s.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;
-      } else if (value == "diagonal") {
-        s.solver.preconditioner = ns::Preconditioner::diagonal;
-      } else if (value == "multigrid") {
-        s.solver.preconditioner = ns::Preconditioner::multigrid;
-      } else {
+      const auto p = ns::preconditioner_from_name(value);
+      if (!p) {
         throw std::invalid_argument(
             "--preconditioner is incomplete-cholesky, diagonal or multigrid");
       }
+      s.solver.preconditioner = *p;
     } else if (key == "--tolerance") {
       s.solver.relative_tolerance = to_number(key, value);
     } else if (key == "--max-iterations") {

@@ -67,15 +67,9 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
   } else if (key == "multigrid-setup") {
     s.solver.multigrid_setup_solves = static_cast<int>(number);
   } else if (key == "preconditioner") {
-    if (value == "ic") {
-      s.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;
-    } else if (value == "diagonal") {
-      s.solver.preconditioner = ns::Preconditioner::diagonal;
-    } else if (value == "multigrid") {
-      s.solver.preconditioner = ns::Preconditioner::multigrid;
-    } else {
-      return false;
-    }
+    const auto p = ns::preconditioner_from_name(value == "ic" ? "incomplete-cholesky" : value);
+    if (!p) return false;
+    s.solver.preconditioner = *p;
   } else if (key == "collision") {
     if (value == "off") s.collision.reset();
   } else {

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string_view>
 
 #include "swemps/kernels/any_kernel.hpp"
 
@@ -117,6 +118,15 @@ constexpr const char* preconditioner_name(Preconditioner p) {
   return p == Preconditioner::diagonal              ? "diagonal"
          : p == Preconditioner::incomplete_cholesky ? "incomplete-cholesky"
                                                     : "multigrid";
+}
+
+// The preconditioner a scene's name stands for; none for a name that is not one.
+constexpr std::optional<Preconditioner> preconditioner_from_name(std::string_view name) {
+  for (const auto p :
+       {Preconditioner::diagonal, Preconditioner::incomplete_cholesky, Preconditioner::multigrid}) {
+    if (name == preconditioner_name(p)) return p;
+  }
+  return std::nullopt;
 }
 
 // Koshizuka's particle collision: two fluid particles closer than distance_spacings l_0 and
