@@ -43,13 +43,14 @@ std::string describe_numerics(const ns::Settings& s) {
       s.velocity_kernel.spec.type == s.pressure_kernel.spec.type &&
       s.velocity_kernel.support_spacings == s.pressure_kernel.support_spacings;
   return fmt::format(
-      "kernel {}{}, source {}, gradient {}{}, free surface below {} n0{}, wall pressures {}, "
+      "kernel {}{}, source {}, gradient {}{}{}, free surface below {} n0{}, wall pressures {}, "
       "Courant {}, solver tolerance {}, collisions {}, {} operators",
       kernel(s.pressure_kernel),
       same_kernels ? "" : fmt::format(" ({} for viscosity)", kernel(s.velocity_kernel)),
       s.source == ns::SourceTerm::mixed ? fmt::format("mixed (gamma {})", s.source_gamma)
                                         : std::string("number-density"),
       ns::pressure_gradient_name(s.gradient),
+      s.gradient_weights == ns::GradientWeights::kernel_slope ? " on the kernel's slope" : "",
       s.gradient == ns::PressureGradient::corrected_repulsive
           ? fmt::format(" (repulsion under {} l0)", s.repulsion_distance_spacings)
           : "",

@@ -3,6 +3,8 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 #include "swemps/neighbors/parallel.hpp"
 
@@ -93,8 +95,53 @@ void MpsOperators<Dim>::assemble(const StepGeometry<Dim>& g, std::vector<char>& 
 }
 
 template <int Dim>
+MpsOperators<Dim>::MpsOperators(const Settings& settings) {
+  if (settings.gradient_weights == GradientWeights::kernel_slope) {
+    slope_kernel_ = kernels::make_kernel<Dim>(
+        settings.pressure_kernel.spec,
+        settings.pressure_kernel.support_spacings * settings.spacing_m);
+  }
+}
+
+namespace {
+
+// The pair weight omega = -w'(r) / r of GradientWeights::kernel_slope, and a stand-in for the
+// MPS weights, whose loop does not read it.
+template <class Kernel>
+struct SlopeWeight {
+  const Kernel& kernel;
+  double operator()(double r2) const {
+    const double r = std::sqrt(r2);
+    return -kernel.dw_dr(r) / r;
+  }
+};
+struct NoSlopeWeight {
+  double operator()(double) const { return 0.0; }
+};
+
+}  // namespace
+
+template <int Dim>
 void MpsOperators<Dim>::velocity_change(const StepGeometry<Dim>& g, double dt,
                                         std::array<std::vector<double>, Dim>& change) {
+  for (int d = 0; d < Dim; ++d) change[d].resize(g.particles.fluid);
+  const bool corrected = g.settings.gradient != PressureGradient::minimum_pressure;
+  if (corrected && slope_kernel_) {
+    std::visit(
+        [&](const auto& kernel) {
+          gradient_loop(g, dt, SlopeWeight<std::decay_t<decltype(kernel)>>{kernel}, change);
+        },
+        *slope_kernel_);
+  } else {
+    gradient_loop(g, dt, NoSlopeWeight{}, change);
+  }
+}
+
+template <int Dim>
+template <class Slope>
+void MpsOperators<Dim>::gradient_loop(const StepGeometry<Dim>& g, double dt, Slope slope,
+                                      std::array<std::vector<double>, Dim>& change) const {
+  constexpr bool own_weights = !std::is_same_v<Slope, NoSlopeWeight>;
   const auto& p = g.particles;
   const auto& s = g.settings;
   const auto& pairs = g.pairs;
@@ -112,7 +159,6 @@ void MpsOperators<Dim>::velocity_change(const StepGeometry<Dim>& g, double dt,
   const std::size_t lowest_of = extrapolated ? fluid : candidates;
   const double reach = s.repulsion_distance_spacings * s.spacing_m;
   const double repulsion_reach2 = reach * reach;
-  for (int d = 0; d < Dim; ++d) change[d].resize(fluid);
   parallel_for(fluid, [&](std::size_t i) {
     const std::size_t first = pairs.offsets[i];
     const auto row = pairs.row(i);
@@ -122,8 +168,12 @@ void MpsOperators<Dim>::velocity_change(const StepGeometry<Dim>& g, double dt,
         lowest = std::min(lowest, p.pressure[row[m]]);
       }
     }
-    std::array<double, Dim> gradient{};
-    std::array<std::array<double, Dim>, Dim> moment{};
+    // The sums on w / r^2 (the gradient with its repulsion, and their correction matrix) and,
+    // with the kernel's slope, the consistent part on the slope with its own correction
+    // matrix and the repulsion alone; the w / r^2 gradient is then the fallback.
+    std::array<double, Dim> gradient{}, repulsion{}, sloped{};
+    std::array<std::array<double, Dim>, Dim> moment{}, sloped_moment{};
+    bool repels = false;
     for (std::size_t m = 0; m < row.size(); ++m) {
       const std::uint32_t j = row[m];
       const double w = pair_weight[first + m];
@@ -134,23 +184,49 @@ void MpsOperators<Dim>::velocity_change(const StepGeometry<Dim>& g, double dt,
       for (int d = 0; d < Dim; ++d) x[d] = p.position[d][j] - p.position[d][i];
       // p_j - p_min = (p_j - p_i) + (p_i - p_min): with the correction matrix the second
       // part, the repulsion, acts only between pairs closer than the repulsion distance.
-      const double coefficient =
-          (corrected ? p.pressure[j] - p.pressure[i] +
-                           (r2 < repulsion_reach2 ? p.pressure[i] - lowest : 0.0)
-                     : p.pressure[j] - lowest) *
-          w / r2;
+      const double difference = corrected ? p.pressure[j] - p.pressure[i] : p.pressure[j] - lowest;
+      const double push = corrected && r2 < repulsion_reach2 ? p.pressure[i] - lowest : 0.0;
+      const double coefficient = (difference + push) * w / r2;
       for (int d = 0; d < Dim; ++d) gradient[d] += coefficient * x[d];
-      if (corrected) {
+      if (!corrected) continue;
+      // The matrices are symmetric: the upper triangle here, the lower one after the loop.
+      for (int a = 0; a < Dim; ++a) {
+        for (int b = a; b < Dim; ++b) moment[a][b] += x[a] * x[b] * w / r2;
+      }
+      if constexpr (own_weights) {
+        const double omega = slope(r2);
+        repels = repels || push != 0.0;
+        for (int d = 0; d < Dim; ++d) {
+          sloped[d] += difference * omega * x[d];
+          repulsion[d] += push * w / r2 * x[d];
+        }
         for (int a = 0; a < Dim; ++a) {
-          for (int b = 0; b < Dim; ++b) moment[a][b] += x[a] * x[b] * w / r2;
+          for (int b = a; b < Dim; ++b) sloped_moment[a][b] += x[a] * x[b] * omega;
         }
       }
     }
-    std::array<double, Dim> solved{};
-    if (corrected && solve_symmetric<Dim>(moment, gradient, solved)) {
+    for (int a = 0; a < Dim; ++a) {
+      for (int b = 0; b < a; ++b) {
+        moment[a][b] = moment[b][a];
+        sloped_moment[a][b] = sloped_moment[b][a];
+      }
+    }
+    if (corrected) {
       // C_i^-1 b is the gradient itself; the standard form's d/n0 is its lattice value.
-      for (int d = 0; d < Dim; ++d) change[d][i] = -dt * solved[d] / s.density_kg_m3;
-      return;
+      std::array<double, Dim> consistent{}, repelled{};
+      bool solved = false;
+      if constexpr (own_weights) {
+        solved = solve_symmetric<Dim>(sloped_moment, sloped, consistent) &&
+                 (!repels || solve_symmetric<Dim>(moment, repulsion, repelled));
+      } else {
+        solved = solve_symmetric<Dim>(moment, gradient, consistent);
+      }
+      if (solved) {
+        for (int d = 0; d < Dim; ++d) {
+          change[d][i] = -dt * (consistent[d] + repelled[d]) / s.density_kg_m3;
+        }
+        return;
+      }
     }
     for (int d = 0; d < Dim; ++d) change[d][i] = factor * gradient[d];
   });

@@ -10,7 +10,7 @@ std::unique_ptr<PressureOperators<Dim>> make_pressure_operators(const Settings& 
   if (settings.operators == Operators::least_squares) {
     return std::make_unique<LeastSquaresOperators<Dim>>();
   }
-  return std::make_unique<MpsOperators<Dim>>();
+  return std::make_unique<MpsOperators<Dim>>(settings);
 }
 
 template std::unique_ptr<PressureOperators<2>> make_pressure_operators<2>(const Settings&);

@@ -56,6 +56,9 @@ void check_settings(const Settings& s) {
                s.gradient != PressureGradient::minimum_pressure),
           "the least-squares operators need extrapolated boundary pressures and a corrected "
           "pressure gradient");
+  require(s.gradient_weights == GradientWeights::mps ||
+              (s.gradient != PressureGradient::minimum_pressure && s.operators == Operators::mps),
+          "the kernel-slope gradient weights need a corrected gradient on the MPS operators");
   require(s.sort_interval >= 1, "sort interval must be >= 1");
 }
 

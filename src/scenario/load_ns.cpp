@@ -111,7 +111,8 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
                  {"scheme", "spacing", "tank_height", "density", "viscosity", "courant",
                   "max_time_step", "pressure_kernel", "velocity_kernel", "free_surface_beta",
                   "free_surface_asymmetry", "source", "source_gamma", "pressure_gradient",
-                  "repulsion_distance", "boundary_pressure", "solver", "collision"},
+                  "gradient_weights", "repulsion_distance", "boundary_pressure", "solver",
+                  "collision"},
                  "an object with at least the particle \"spacing\"");
   NsSpec spec;
   ns::Settings& s = spec.settings;
@@ -228,6 +229,24 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
                                 : "\"extrapolated\" (or no key)");
       }
     }
+  }
+  // The gradient's pair weights belong to the corrected MPS gradient: the standard gradient
+  // and the least-squares fits have their own, so there the default is the MPS weights and
+  // asking for the kernel's slope is refused.
+  const bool own_gradient = standard_gradient || s.operators == ns::Operators::least_squares;
+  if (own_gradient) s.gradient_weights = ns::GradientWeights::mps;
+  s.gradient_weights =
+      choice(o, "gradient_weights", {"mps", "kernel-slope"},
+             ns::gradient_weights_name(s.gradient_weights)) == "kernel-slope"
+          ? ns::GradientWeights::kernel_slope
+          : ns::GradientWeights::mps;
+  if (own_gradient && s.gradient_weights == ns::GradientWeights::kernel_slope) {
+    throw ScenarioError(o.path("gradient_weights"),
+                        describe(*o.find("gradient_weights")) +
+                            (standard_gradient ? " with the \"minimum-pressure\" gradient"
+                                               : " with the \"least-squares\" scheme"),
+                        "\"mps\" (or no key): the kernel's slope weighs the corrected MPS "
+                        "gradient only");
   }
   if (s.free_surface_asymmetry > 0.0 && number_density) {
     throw ScenarioError(

@@ -94,11 +94,13 @@ const char* usage =
     "  --repulsion R                  corrected-repulsive: pairs closer than R l0 repel (0.9)\n"
     "  --asymmetry A                  surface only where the mean offset > A l0 (0: off)\n"
     "  --gradient minimum-pressure|corrected|corrected-repulsive (minimum-pressure)\n"
+    "  --gradient-weights mps|kernel-slope  corrected gradients' pair weights (mps)\n"
     "  --boundary poisson|extrapolated          wall pressures (poisson)\n"
     "  --scheme standard|well-balanced|least-squares  every choice of that scheme; options\n"
     "                                 after it override them (standard)\n"
     "  --operators mps|least-squares  Laplacian and gradient discretisation (mps)\n"
-    "  --preconditioner incomplete-cholesky|diagonal (incomplete-cholesky)\n"
+    "  --preconditioner incomplete-cholesky|diagonal|multigrid (incomplete-cholesky)\n"
+    "  --setup-solves N               solves one multigrid setup serves (5)\n"
     "  --tolerance TOL                CG relative residual (1e-6)\n"
     "  --max-iterations N             CG iteration cap (1000)\n"
     "  --courant C                    time-step Courant number (0.2)\n"
@@ -193,6 +195,12 @@ Options parse(int argc, char** argv) {
         throw std::invalid_argument(
             "--gradient is minimum-pressure, corrected or corrected-repulsive");
       }
+    } else if (key == "--gradient-weights") {
+      if (value != "mps" && value != "kernel-slope") {
+        throw std::invalid_argument("--gradient-weights is mps or kernel-slope");
+      }
+      s.gradient_weights =
+          value == "mps" ? ns::GradientWeights::mps : ns::GradientWeights::kernel_slope;
     } else if (key == "--scheme") {
       // Every numerical choice of the scheme; options after it override them one by one.
       if (value != "standard" && value != "well-balanced" && value != "least-squares") {
@@ -224,6 +232,8 @@ Options parse(int argc, char** argv) {
             "--preconditioner is incomplete-cholesky, diagonal or multigrid");
       }
       s.solver.preconditioner = *p;
+    } else if (key == "--setup-solves") {
+      s.solver.multigrid_setup_solves = to_integer(key, value);
     } else if (key == "--tolerance") {
       s.solver.relative_tolerance = to_number(key, value);
     } else if (key == "--max-iterations") {
@@ -626,6 +636,7 @@ int main(int argc, char** argv) {
               : o.settings.gradient == ns::PressureGradient::corrected_repulsive
                   ? "corrected-repulsive"
                   : "minimum-pressure")
+          << " gradient_weights=" << ns::gradient_weights_name(o.settings.gradient_weights)
           << " boundary="
           << (o.settings.boundary == ns::BoundaryPressure::extrapolated ? "extrapolated"
                                                                         : "poisson")

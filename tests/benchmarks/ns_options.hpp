@@ -4,8 +4,8 @@
 //
 // Keys: scheme=standard|well-balanced|least-squares (every numerical choice of that scheme;
 // later keys override), operators=mps|least-squares, source=number-density|mixed, gamma=G,
-// gradient=minimum|corrected|corrected-repulsive, boundary=poisson|extrapolated, repulsion=R,
-// asymmetry=A, kernel=NAME, support=S, beta=B, courant=C, tolerance=T, compression=E
+// gradient=minimum|corrected|corrected-repulsive, gradient-weights=mps|kernel-slope,
+// boundary=poisson|extrapolated, repulsion=R, asymmetry=A, kernel=NAME, support=S, beta=B, courant=C, tolerance=T, compression=E
 // (solver.compression_tolerance), preconditioner=ic|diagonal|multigrid, multigrid-setup=N
 // (solver.multigrid_setup_solves), collision=off.
 #pragma once
@@ -49,6 +49,10 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
   } else if (key == "support") {
     s.pressure_kernel.support_spacings = number;
     s.velocity_kernel.support_spacings = number;
+  } else if (key == "gradient-weights") {
+    if (value != "mps" && value != "kernel-slope") return false;
+    s.gradient_weights =
+        value == "mps" ? ns::GradientWeights::mps : ns::GradientWeights::kernel_slope;
   } else if (key == "repulsion") {
     s.repulsion_distance_spacings = number;
   } else if (key == "asymmetry") {

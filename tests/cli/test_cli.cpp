@@ -531,7 +531,8 @@ TEST_CASE("a model ns scene writes column depths that hold its water, and a seri
   CHECK_THAT(r.output, Catch::Contains("the scene's 1 walls are not used"));
   // The log names the numerics: the default (well-balanced) scheme's.
   CHECK_THAT(r.output, Catch::Contains("model ns numerics: kernel sheu-quartic at 2.1 l0, "
-                                       "source mixed (gamma 0.05), gradient corrected-repulsive"));
+                                       "source mixed (gamma 0.05), gradient corrected-repulsive "
+                                       "(repulsion under 0.9 l0)"));
   CHECK_THAT(r.output, Catch::Contains("wall pressures extrapolated, Courant 0.4"));
   CHECK_THAT(r.output, Catch::Contains("Poisson: conjugate gradients, multigrid "
                                        "preconditioner, tolerance 0.001"));

@@ -116,6 +116,14 @@ std::vector<Broken> broken_ns_scenes() {
          s["ns"]["free_surface_asymmetry"] = 0.2;
        }),
        "/ns/free_surface_asymmetry", "\"source\": \"mixed\" alongside it"},
+      {"kernel-slope weights with the standard gradient", ns_edited([](json& s) {
+         s["ns"]["scheme"] = "standard";
+         s["ns"]["gradient_weights"] = "kernel-slope";
+       }),
+       "/ns/gradient_weights", "the kernel's slope weighs the corrected MPS gradient only"},
+      {"unknown gradient weights",
+       ns_edited([](json& s) { s["ns"]["gradient_weights"] = "slope"; }),
+       "/ns/gradient_weights", "\"kernel-slope\""},
       {"unknown gradient",
        ns_edited([](json& s) { s["ns"]["pressure_gradient"] = "least-squares"; }),
        "/ns/pressure_gradient", "\"corrected\""},
@@ -264,6 +272,7 @@ void check_numerics(const ns::Settings& got, const ns::Settings& expected) {
   CHECK(got.free_surface_beta == expected.free_surface_beta);
   CHECK(got.free_surface_asymmetry == expected.free_surface_asymmetry);
   CHECK(got.gradient == expected.gradient);
+  CHECK(got.gradient_weights == expected.gradient_weights);
   CHECK(got.repulsion_distance_spacings == expected.repulsion_distance_spacings);
   CHECK(got.boundary == expected.boundary);
   CHECK(got.source == expected.source);
@@ -305,8 +314,10 @@ TEST_CASE("the least-squares ns scheme is the well-balanced one on least-squares
   expected.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;  // its incomplete LU
   check_numerics(got.ns->settings, expected);
   // The fits replace the corrected gradient and need the walls' extrapolated pressures.
+  CHECK(got.ns->settings.gradient_weights == ns::GradientWeights::mps);
   for (const auto& [key, value] : {std::pair{"pressure_gradient", "minimum-pressure"},
-                                   std::pair{"boundary_pressure", "poisson"}}) {
+                                   std::pair{"boundary_pressure", "poisson"},
+                                   std::pair{"gradient_weights", "kernel-slope"}}) {
     CAPTURE(key);
     try {
       parse_text(ns_edited([&](json& j) {
@@ -333,6 +344,7 @@ TEST_CASE("the ns scheme sets every numerical default, and keys override one by 
   CHECK(expected.gradient == ns::PressureGradient::corrected_repulsive);
   CHECK(expected.boundary == ns::BoundaryPressure::extrapolated);
   CHECK(expected.pressure_kernel.spec.type == KernelType::sheu_quartic);
+  CHECK(expected.gradient_weights == ns::GradientWeights::mps);
 
   // One key changed, the rest of the scheme kept.
   const auto courant = parse_text(ns_edited([](json& j) {
@@ -400,7 +412,7 @@ TEST_CASE("every ns key arrives as given", "[scenario]") {
       "velocity_kernel": {"type": "hyperbolic-sph", "support": 2.5, "kappa": 3},
       "free_surface_beta": 0.95, "source": "mixed", "source_gamma": 0.1,
       "free_surface_asymmetry": 0.25, "pressure_gradient": "corrected-repulsive",
-      "repulsion_distance": 0.8,
+      "gradient_weights": "kernel-slope", "repulsion_distance": 0.8,
       "boundary_pressure": "extrapolated",
       "solver": {"preconditioner": "diagonal", "tolerance": 1e-8, "max_iterations": 300,
                  "setup_solves": 7},
@@ -427,6 +439,7 @@ TEST_CASE("every ns key arrives as given", "[scenario]") {
   CHECK(got.source_gamma == 0.1);
   CHECK(got.free_surface_asymmetry == 0.25);
   CHECK(got.gradient == ns::PressureGradient::corrected_repulsive);
+  CHECK(got.gradient_weights == ns::GradientWeights::kernel_slope);
   CHECK(got.repulsion_distance_spacings == 0.8);
   CHECK(got.boundary == ns::BoundaryPressure::extrapolated);
   CHECK(got.solver.preconditioner == ns::Preconditioner::diagonal);

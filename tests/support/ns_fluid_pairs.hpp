@@ -1,6 +1,6 @@
 #pragma once
-// The fluid rows of a 2D Navier-Stokes tank's neighbour list and each pair's kernel weight,
-// as a step finds them: for the tests of the Poisson systems built on them.
+// The fluid rows of a Navier-Stokes tank's neighbour list and each pair's kernel weight, as a
+// step finds them: for the tests of the Poisson systems and gradients built on them.
 
 #include <cmath>
 #include <vector>
@@ -12,19 +12,23 @@
 
 namespace swemps::test {
 
-inline void fluid_pairs(const ns::Particles<2>& particles, const kernels::AnyKernel<2>& kernel,
-                        neighbors::NeighborList& pairs, std::vector<double>& weight) {
-  const double support = kernels::support<2>(kernel);
+template <int Dim>
+void fluid_pairs(const ns::Particles<Dim>& particles, const kernels::AnyKernel<Dim>& kernel,
+                 neighbors::NeighborList& pairs, std::vector<double>& weight) {
+  const double support = kernels::support<Dim>(kernel);
   const auto coords = particles.coordinates();
-  neighbors::CellList<2> cells;
+  neighbors::CellList<Dim> cells;
   cells.build(coords, support);
-  neighbors::build_neighbor_list<2>(cells, coords, particles.fluid, support, pairs);
+  neighbors::build_neighbor_list<Dim>(cells, coords, particles.fluid, support, pairs);
   weight.clear();
   for (std::size_t i = 0; i < pairs.row_count(); ++i) {
     for (std::uint32_t j : pairs.row(i)) {
-      weight.push_back(kernels::weight<2>(
-          kernel, std::hypot(particles.position[0][j] - particles.position[0][i],
-                             particles.position[1][j] - particles.position[1][i])));
+      double r2 = 0.0;
+      for (int d = 0; d < Dim; ++d) {
+        const double x = particles.position[d][j] - particles.position[d][i];
+        r2 += x * x;
+      }
+      weight.push_back(kernels::weight<Dim>(kernel, std::sqrt(r2)));
     }
   }
 }
