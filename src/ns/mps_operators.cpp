@@ -208,7 +208,7 @@ void MpsOperators<Dim>::gradient_loop(const StepGeometry<Dim>& g, double dt, Slo
     for (int a = 0; a < Dim; ++a) {
       for (int b = 0; b < a; ++b) {
         moment[a][b] = moment[b][a];
-        sloped_moment[a][b] = sloped_moment[b][a];
+        if constexpr (own_weights) sloped_moment[a][b] = sloped_moment[b][a];
       }
     }
     if (corrected) {

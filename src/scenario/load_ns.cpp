@@ -235,11 +235,9 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
   // asking for the kernel's slope is refused.
   const bool own_gradient = standard_gradient || s.operators == ns::Operators::least_squares;
   if (own_gradient) s.gradient_weights = ns::GradientWeights::mps;
-  s.gradient_weights =
+  s.gradient_weights = *ns::gradient_weights_from_name(  // choice() checked the name
       choice(o, "gradient_weights", {"mps", "kernel-slope"},
-             ns::gradient_weights_name(s.gradient_weights)) == "kernel-slope"
-          ? ns::GradientWeights::kernel_slope
-          : ns::GradientWeights::mps;
+             ns::gradient_weights_name(s.gradient_weights)));
   if (own_gradient && s.gradient_weights == ns::GradientWeights::kernel_slope) {
     throw ScenarioError(o.path("gradient_weights"),
                         describe(*o.find("gradient_weights")) +

@@ -196,11 +196,9 @@ Options parse(int argc, char** argv) {
             "--gradient is minimum-pressure, corrected or corrected-repulsive");
       }
     } else if (key == "--gradient-weights") {
-      if (value != "mps" && value != "kernel-slope") {
-        throw std::invalid_argument("--gradient-weights is mps or kernel-slope");
-      }
-      s.gradient_weights =
-          value == "mps" ? ns::GradientWeights::mps : ns::GradientWeights::kernel_slope;
+      const auto weights = ns::gradient_weights_from_name(value);
+      if (!weights) throw std::invalid_argument("--gradient-weights is mps or kernel-slope");
+      s.gradient_weights = *weights;
     } else if (key == "--scheme") {
       // Every numerical choice of the scheme; options after it override them one by one.
       if (value != "standard" && value != "well-balanced" && value != "least-squares") {

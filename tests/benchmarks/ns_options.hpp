@@ -50,9 +50,9 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
     s.pressure_kernel.support_spacings = number;
     s.velocity_kernel.support_spacings = number;
   } else if (key == "gradient-weights") {
-    if (value != "mps" && value != "kernel-slope") return false;
-    s.gradient_weights =
-        value == "mps" ? ns::GradientWeights::mps : ns::GradientWeights::kernel_slope;
+    const auto weights = ns::gradient_weights_from_name(value);
+    if (!weights) return false;
+    s.gradient_weights = *weights;
   } else if (key == "repulsion") {
     s.repulsion_distance_spacings = number;
   } else if (key == "asymmetry") {

@@ -137,6 +137,14 @@ constexpr const char* gradient_weights_name(GradientWeights w) {
   return w == GradientWeights::mps ? "mps" : "kernel-slope";
 }
 
+// The gradient weights a scene's name stands for; none for a name that is not one.
+constexpr std::optional<GradientWeights> gradient_weights_from_name(std::string_view name) {
+  for (const auto w : {GradientWeights::mps, GradientWeights::kernel_slope}) {
+    if (name == gradient_weights_name(w)) return w;
+  }
+  return std::nullopt;
+}
+
 // The scene's name of each preconditioner (docs/scenario.md), for reading scenes and for logs.
 constexpr const char* preconditioner_name(Preconditioner p) {
   return p == Preconditioner::diagonal              ? "diagonal"
