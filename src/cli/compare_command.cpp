@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <string>
 #include <variant>
 
 #include "swemps/cli/output.hpp"
@@ -70,9 +71,14 @@ void compare(const Options& options, const std::string& command_line) {
   scenario::Scenario swe_scene = scene;
   swe_scene.model = scenario::Model::swe;
   swe_scene.output.path = with_suffix(stem, ".swe.nc");
+  // The Navier-Stokes side runs in 3D, and the scheme's defaults were read for the scene's
+  // dimension (ns::scheme_settings): a 2D scene would run with the 2D ones.
+  if (scene.dimension != 3) {
+    throw scenario::ScenarioError("/dimension", std::to_string(scene.dimension),
+                                  "3 or no key (compare runs the Navier-Stokes side in 3D)");
+  }
   scenario::Scenario ns_scene = scene;
   ns_scene.model = scenario::Model::ns;
-  ns_scene.dimension = 3;
   ns_scene.output.path = with_suffix(stem, ".ns.nc");
   // Splitting and merging set the shallow-water particles' resolution where the water thins or
   // gathers; they are numerics, not physics, so the comparison keeps them for the shallow-water

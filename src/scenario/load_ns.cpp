@@ -105,7 +105,7 @@ bool whole_spacings(double length, double spacing) {
   return n >= 1.0 - 1e-6 && std::abs(n - std::round(n)) <= 1e-6;
 }
 
-std::optional<NsSpec> read_ns(const json* v, double gravity) {
+std::optional<NsSpec> read_ns(const json* v, double gravity, int dimensions) {
   if (v == nullptr) return std::nullopt;
   const Object o(*v, "/ns",
                  {"scheme", "spacing", "tank_height", "density", "viscosity", "courant",
@@ -121,7 +121,8 @@ std::optional<NsSpec> read_ns(const json* v, double gravity) {
       choice(o, "scheme", {"well-balanced", "standard", "least-squares"}, "well-balanced");
   s = ns::scheme_settings(scheme == "standard"        ? ns::Scheme::standard
                           : scheme == "least-squares" ? ns::Scheme::least_squares
-                                                      : ns::Scheme::well_balanced);
+                                                      : ns::Scheme::well_balanced,
+                          dimensions);
   s.gravity_m_s2 = gravity;
   s.spacing_m = positive(o, "spacing", kMetres);
   if (o.find("tank_height") != nullptr) {
@@ -431,28 +432,30 @@ void check_ns_scene(const Scenario& s) {
   check_ns_domain(s);
 }
 
-// "model", "dimension" and the "ns" block.
+// "model", "dimension" and the "ns" block. The dimension comes first: the scheme's defaults
+// depend on it (ns::scheme_settings).
 void read_model(const Object& o, double gravity, Scenario& s) {
   s.model = choice(o, "model", {"swe", "ns"}, "swe") == "ns" ? Model::ns : Model::swe;
-  s.ns = read_ns(o.find("ns"), gravity);
+  if (o.find("dimension") != nullptr) {
+    if (s.model != Model::ns && o.find("ns") == nullptr) {
+      throw ScenarioError(o.path("dimension"),
+                          "a \"dimension\" in a shallow-water scene without an \"ns\" block",
+                          "no \"dimension\" here (it goes with \"model\": \"ns\" or an \"ns\" "
+                          "block)");
+    }
+    const std::string expected = "2 (a vertical x-z section along x) or 3 (x, y, z)";
+    const double d = number(o, "dimension", expected);
+    if (d != 2.0 && d != 3.0) {
+      throw ScenarioError(o.path("dimension"), describe(*o.find("dimension")), expected);
+    }
+    s.dimension = static_cast<int>(d);
+  }
+  s.ns = read_ns(o.find("ns"), gravity, s.dimension);
   if (s.model == Model::ns && !s.ns) {
     throw ScenarioError(o.path("ns"), kMissing,
                         "an \"ns\" block with at least the particle \"spacing\" (model ns runs "
                         "on it)");
   }
-  if (o.find("dimension") == nullptr) return;
-  if (s.model != Model::ns && !s.ns) {
-    throw ScenarioError(o.path("dimension"),
-                        "a \"dimension\" in a shallow-water scene without an \"ns\" block",
-                        "no \"dimension\" here (it goes with \"model\": \"ns\" or an \"ns\" "
-                        "block)");
-  }
-  const std::string expected = "2 (a vertical x-z section along x) or 3 (x, y, z)";
-  const double d = number(o, "dimension", expected);
-  if (d != 2.0 && d != 3.0) {
-    throw ScenarioError(o.path("dimension"), describe(*o.find("dimension")), expected);
-  }
-  s.dimension = static_cast<int>(d);
 }
 
 }  // namespace swemps::scenario

@@ -145,6 +145,10 @@ Options parse(int argc, char** argv) {
   o.command_line = "swemps-ns-dam-break";
   for (int k = 1; k < argc; ++k) o.command_line += std::string(" ") + argv[k];
   auto& s = o.settings;
+  // The scheme's defaults depend on the dimension, so --dim is read first wherever it stands.
+  for (int k = 1; k + 1 < argc; k += 2) {
+    if (std::string(argv[k]) == "--dim") o.dim = to_integer("--dim", argv[k + 1]);
+  }
   for (int k = 1; k < argc; k += 2) {
     const std::string key = argv[k];
     if (key == "--help") throw std::invalid_argument("");
@@ -206,7 +210,8 @@ Options parse(int argc, char** argv) {
       }
       s = ns::scheme_settings(value == "standard"        ? ns::Scheme::standard
                               : value == "least-squares" ? ns::Scheme::least_squares
-                                                         : ns::Scheme::well_balanced);
+                                                         : ns::Scheme::well_balanced,
+                              o.dim);
     } else if (key == "--operators") {
       if (value == "mps") {
         s.operators = ns::Operators::mps;

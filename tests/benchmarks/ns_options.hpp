@@ -17,8 +17,9 @@
 
 namespace swemps::benchmarks {
 
-// Applies one key=value argument to the settings; returns false for an unknown key or value.
-inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
+// Applies one key=value argument to the settings of a run in `dimensions`; returns false for an
+// unknown key or value.
+inline bool apply_ns_option(const std::string& argument, ns::Settings& s, int dimensions) {
   const auto eq = argument.find('=');
   if (eq == std::string::npos) return false;
   const std::string key = argument.substr(0, eq), value = argument.substr(eq + 1);
@@ -28,7 +29,8 @@ inline bool apply_ns_option(const std::string& argument, ns::Settings& s) {
     const double spacing = s.spacing_m;
     s = ns::scheme_settings(value == "standard"        ? ns::Scheme::standard
                             : value == "least-squares" ? ns::Scheme::least_squares
-                                                       : ns::Scheme::well_balanced);
+                                                       : ns::Scheme::well_balanced,
+                            dimensions);
     s.spacing_m = spacing;
   } else if (key == "operators") {
     if (value != "mps" && value != "least-squares") return false;

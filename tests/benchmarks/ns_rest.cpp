@@ -33,12 +33,12 @@ using namespace swemps;
 bool trace = false;  // trace=on: one line per sample
 
 // The shared keys (ns_options.hpp) and trace=on.
-bool apply_option(const std::string& argument, ns::Settings& s) {
+bool apply_option(const std::string& argument, ns::Settings& s, int dimensions) {
   if (argument == "trace=on" || argument == "trace=off") {
     trace = argument == "trace=on";
     return true;
   }
-  return benchmarks::apply_ns_option(argument, s);
+  return benchmarks::apply_ns_option(argument, s, dimensions);
 }
 
 template <int Dim>
@@ -59,7 +59,7 @@ int run(double end_time, double l0, const std::vector<std::string>& options) {
   s.density_kg_m3 = rho;
   std::string label;
   for (const auto& option : options) {
-    if (!apply_option(option, s)) {
+    if (!apply_option(option, s, Dim)) {
       std::fprintf(stderr, "unknown option '%s'\n", option.c_str());
       return 2;
     }

@@ -228,7 +228,7 @@ int main(int argc, char** argv) {
   ns::Settings s;
   s.spacing_m = 0.006;
   for (int a = 1; a < argc; ++a) {
-    if (!benchmarks::apply_ns_option(argv[a], s)) {
+    if (!benchmarks::apply_ns_option(argv[a], s, 2)) {
       std::fprintf(stderr, "swemps-ns-solvers: unknown option '%s'\n", argv[a]);
       return 2;
     }

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   Settings s;
   s.spacing_m = 0.006;
   for (int a = 2; a < argc; ++a) {
-    if (!swemps::benchmarks::apply_ns_option(argv[a], s)) {
+    if (!swemps::benchmarks::apply_ns_option(argv[a], s, 2)) {
       std::fprintf(stderr, "swemps-ns-speed: unknown option '%s' (key=value, see ns_options.hpp)\n",
                    argv[a]);
       return 2;

@@ -726,5 +726,14 @@ TEST_CASE("compare refuses a scene model ns cannot run, before running either", 
   const auto missing = run(cli + " compare " + (dir / "scenario.json").string());
   CHECK(missing.status == 2);
   CHECK_THAT(missing.output, Catch::Contains("scenario error at /ns: found nothing"));
+
+  // The 3D run would take the numerics read for the scene's 2D section.
+  std::string section = kTinyCompareScene;
+  section.insert(section.rfind('}'), R"(, "dimension": 2)");
+  std::ofstream(dir / "scenario.json") << section;
+  const auto flat = run(cli + " compare " + (dir / "scenario.json").string());
+  CHECK(flat.status == 2);
+  CHECK_THAT(flat.output, Catch::Contains("scenario error at /dimension"));
+  CHECK_FALSE(fs::exists(dir / "channel.swe.nc"));
   fs::remove_all(dir);
 }

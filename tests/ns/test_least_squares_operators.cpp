@@ -53,7 +53,7 @@ Tank make_tank() {
     if (t.particles.position[1][i] > t.surface_z - 0.5 * kSpacing) continue;
     for (int d = 0; d < 2; ++d) t.particles.position[d][i] += shift(rng);
   }
-  t.settings = ns::scheme_settings(ns::Scheme::least_squares);
+  t.settings = ns::scheme_settings(ns::Scheme::least_squares, 2);
   t.settings.spacing_m = kSpacing;
   t.settings.gradient = ns::PressureGradient::corrected;  // no repulsion between close pairs
   const auto kernel =

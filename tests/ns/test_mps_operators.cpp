@@ -54,7 +54,7 @@ Water<Dim> make_water(int cells, double jitter, ns::GradientWeights weights) {
     if (w.particles.position[Dim - 1][i] > w.top - 0.5 * kSpacing) continue;
     for (int d = 0; d < Dim; ++d) w.particles.position[d][i] += shift(rng);
   }
-  w.settings = ns::scheme_settings(ns::Scheme::well_balanced);
+  w.settings = ns::scheme_settings(ns::Scheme::well_balanced, Dim);
   w.settings.spacing_m = kSpacing;
   w.settings.gradient = ns::PressureGradient::corrected;
   w.settings.gradient_weights = weights;

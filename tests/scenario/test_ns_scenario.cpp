@@ -281,6 +281,7 @@ void check_numerics(const ns::Settings& got, const ns::Settings& expected) {
   CHECK(got.solver.preconditioner == expected.solver.preconditioner);
   CHECK(got.solver.relative_tolerance == expected.solver.relative_tolerance);
   CHECK(got.solver.max_iterations == expected.solver.max_iterations);
+  CHECK(got.solver.multigrid_setup_solves == expected.solver.multigrid_setup_solves);
   REQUIRE(got.collision.has_value());
   CHECK(got.collision->distance_spacings == expected.collision->distance_spacings);
   CHECK(got.collision->restitution == expected.collision->restitution);
@@ -296,7 +297,7 @@ TEST_CASE("the ns block takes the default scheme's settings", "[scenario]") {
   const ns::Settings& got = s.ns->settings;
   CHECK(got.spacing_m == 0.01);
   CHECK(got.gravity_m_s2 == 9.8);  // the scene's gravity
-  check_numerics(got, ns::scheme_settings(kDefaultScheme));
+  check_numerics(got, ns::scheme_settings(kDefaultScheme, 3));
   // Twice the deepest water, on the lattice.
   REQUIRE(s.ns->tank_height_m.has_value());
   CHECK(*s.ns->tank_height_m == Approx(0.2));
@@ -309,10 +310,13 @@ TEST_CASE("the ns block takes the default scheme's settings", "[scenario]") {
 TEST_CASE("the least-squares ns scheme is the well-balanced one on least-squares operators",
           "[scenario]") {
   const auto got = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "least-squares"; }));
-  ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced);
+  // The well-balanced scheme's 3D gradient weights and kept setup are its MPS gradient's and
+  // its multigrid's, which the least-squares scheme has not: its choices are the 2D ones.
+  ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced, 2);
   expected.operators = ns::Operators::least_squares;
   expected.solver.preconditioner = ns::Preconditioner::incomplete_cholesky;  // its incomplete LU
   check_numerics(got.ns->settings, expected);
+  check_numerics(got.ns->settings, ns::scheme_settings(ns::Scheme::least_squares, 3));
   // The fits replace the corrected gradient and need the walls' extrapolated pressures.
   CHECK(got.ns->settings.gradient_weights == ns::GradientWeights::mps);
   for (const auto& [key, value] : {std::pair{"pressure_gradient", "minimum-pressure"},
@@ -335,16 +339,26 @@ TEST_CASE("the least-squares ns scheme is the well-balanced one on least-squares
 TEST_CASE("the ns scheme sets every numerical default, and keys override one by one",
           "[scenario]") {
   const auto standard = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "standard"; }));
-  check_numerics(standard.ns->settings, ns::scheme_settings(ns::Scheme::standard));
+  check_numerics(standard.ns->settings, ns::scheme_settings(ns::Scheme::standard, 3));
   CHECK(standard.ns->settings.gradient == ns::PressureGradient::minimum_pressure);
 
   const auto balanced = parse_text(ns_edited([](json& j) { j["ns"]["scheme"] = "well-balanced"; }));
-  const ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced);
+  const ns::Settings expected = ns::scheme_settings(ns::Scheme::well_balanced, 3);
   check_numerics(balanced.ns->settings, expected);
   CHECK(expected.gradient == ns::PressureGradient::corrected_repulsive);
   CHECK(expected.boundary == ns::BoundaryPressure::extrapolated);
   CHECK(expected.pressure_kernel.spec.type == KernelType::sheu_quartic);
-  CHECK(expected.gradient_weights == ns::GradientWeights::mps);
+  // In 3D the gradient on the kernel's slope (w / r^2 amplifies a lattice wave there at
+  // 2.1 l0) and the multigrid's setup kept longer; in 2D the MPS weights and 5 solves.
+  CHECK(expected.gradient_weights == ns::GradientWeights::kernel_slope);
+  CHECK(expected.solver.multigrid_setup_solves == 20);
+  const auto section = parse_text(ns_edited([](json& j) { j["dimension"] = 2; }));
+  check_numerics(section.ns->settings, ns::scheme_settings(ns::Scheme::well_balanced, 2));
+  CHECK(section.ns->settings.gradient_weights == ns::GradientWeights::mps);
+  CHECK(section.ns->settings.solver.multigrid_setup_solves == 5);
+  // An explicit key still wins over the dimension's default.
+  const auto asked = parse_text(ns_edited([](json& j) { j["ns"]["gradient_weights"] = "mps"; }));
+  CHECK(asked.ns->settings.gradient_weights == ns::GradientWeights::mps);
 
   // One key changed, the rest of the scheme kept.
   const auto courant = parse_text(ns_edited([](json& j) {
@@ -365,7 +379,7 @@ TEST_CASE("the ns scheme sets every numerical default, and keys override one by 
   }));
   CHECK(split.ns->settings.pressure_kernel.spec.type == KernelType::standard);
   CHECK(split.ns->settings.velocity_kernel.spec.type ==
-        ns::scheme_settings(kDefaultScheme).velocity_kernel.spec.type);
+        ns::scheme_settings(kDefaultScheme, 3).velocity_kernel.spec.type);
   CHECK(split.ns->settings.velocity_kernel.support_spacings == 3.0);
 
   // The standard gradient turns off what only the corrected one can carry, without an error
